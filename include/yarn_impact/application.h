@@ -1,0 +1,51 @@
+#ifndef yarn_impact_application_h
+#define yarn_impact_application_h
+
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/fe/parameters.h>
+
+#include <iosfwd>
+#include <string>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace YarnImpact
+{
+  /** Every parameter of a run: the shared ones and those of each model. */
+  struct AllParameters
+  {
+    Parameters::Shared shared;
+    FE::Parameters     fe;
+    DEM::Parameters    dem;
+
+    /** Declare every entry. */
+    static void
+    declare_parameters(dealii::ParameterHandler &prm);
+
+    /** Parse every entry and validate the set-up; throws InputError. */
+    void
+    parse_parameters(dealii::ParameterHandler &prm);
+  };
+
+  /**
+   * Read @p file into @p prm (declared with AllParameters) and parse it.
+   * Parse errors of deal.II are turned into one-line InputError messages
+   * that name the file line and the entry.
+   */
+  AllParameters
+  read_parameters(const std::string &file, dealii::ParameterHandler &prm);
+
+  /**
+   * The command line: `yarn-impact file.prm`, `--check file.prm`,
+   * `--print-parameters`, `--help`. Must be called with MPI initialised.
+   * @return the process exit code
+   */
+  int
+  run_application(int argc, char **argv);
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,73 @@
+#ifndef yarn_impact_core_history_h
+#define yarn_impact_core_history_h
+
+#include <yarn_impact/core/impact_model.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace YarnImpact
+{
+  /** One row of the history (design.md section 7), in SI units. */
+  struct HistoryRow
+  {
+    /** Simulated time [s]. */
+    double time = 0.;
+    /** Time step number [-]. */
+    unsigned long step = 0;
+    /** Current time step [s]. */
+    double time_step = 0.;
+    /** Projectile displacement in the impact direction [m]. */
+    double projectile_displacement = 0.;
+    /** Projectile speed in the impact direction [m/s]. */
+    double projectile_velocity = 0.;
+    /** Force of the yarn on the projectile, opposing the impact [N]. */
+    double contact_force = 0.;
+    /** Projectile kinetic energy [J]. */
+    double projectile_kinetic_energy = 0.;
+    /** Work done by the driver of a prescribed projectile [J]. */
+    double external_work = 0.;
+    /** Energy balance error: (current total + dissipated - external work -
+     * initial total) / initial total [-]. */
+    double energy_error = 0.;
+    /** The model's observables. */
+    Observables model;
+  };
+
+  /**
+   * The history CSV `history_<model>.csv` (written by rank 0) and the rows
+   * kept in memory for the end-of-run summary. Column names carry their
+   * (scaled) units.
+   */
+  class History
+  {
+  public:
+    /** Open `<directory>/history_<model_name>.csv` on rank 0 and write the
+     * header. */
+    History(const std::string &directory,
+            const std::string &model_name,
+            const bool         is_root);
+
+    /** Append a row (flushed, so a crashed run keeps what it had). */
+    void
+    add(const HistoryRow &row);
+
+    /** All rows so far. */
+    const std::vector<HistoryRow> &
+    rows() const
+    {
+      return all_rows;
+    }
+
+    /** The CSV column names, in order. */
+    static std::vector<std::string>
+    column_names();
+
+  private:
+    std::ofstream           file;
+    std::vector<HistoryRow> all_rows;
+  };
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,154 @@
+#ifndef yarn_impact_core_impact_model_h
+#define yarn_impact_core_impact_model_h
+
+#include <yarn_impact/analysis/wave_fronts.h>
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+
+namespace YarnImpact
+{
+  class Projectile;
+
+  /**
+   * Observables of a model at one instant, defined the same way in both
+   * models (design.md section 7). All values are those of the whole yarn,
+   * whatever the symmetry.
+   */
+  struct Observables
+  {
+    /** Kinetic energy of the yarn [J]. */
+    double kinetic_energy = 0.;
+    /** Elastic (strain) energy of the yarn [J]. */
+    double elastic_energy = 0.;
+    /** Energy stored in the contact penalty springs [J]. */
+    double contact_energy = 0.;
+    /** Energy dissipated so far by friction and contact damping [J]. */
+    double dissipated_energy = 0.;
+    /** Largest longitudinal strain in the yarn [-]. */
+    double max_strain = 0.;
+    /** Failed FE cells or broken DEM trusses, whole yarn [-]. */
+    unsigned long n_failed = 0;
+    /** Wave fronts and section width. */
+    Analysis::WaveFrontPositions fronts;
+  };
+
+  /**
+   * What Smith theory and the model-consistency report need to know about a
+   * model's yarn along its axis.
+   */
+  struct AxialProperties
+  {
+    /** Reference area that carries the axial stress [m^2]. */
+    double area = 0.;
+    /** Density of that area's material [kg/m^3]. */
+    double density = 0.;
+    /** Small-strain axial modulus [Pa]. */
+    double modulus = 0.;
+    /** Uniaxial nominal (first Piola-Kirchhoff) stress as a function of the
+     * engineering strain, \f$P(\varepsilon)\f$ [Pa]. */
+    std::function<double(double)> nominal_stress;
+
+    /** Mass per unit length \f$\rho A\f$ [kg/m]. */
+    double
+    mass_per_length() const
+    {
+      return density * area;
+    }
+    /** Axial stiffness \f$EA\f$ [N]. */
+    double
+    axial_stiffness() const
+    {
+      return modulus * area;
+    }
+  };
+
+  /**
+   * The interface every yarn model implements so that ImpactSimulation can
+   * drive it (design.md section 3). The time loop is velocity Verlet:
+   *
+   * @code
+   * kick(dt/2); drift(dt); F = compute_forces(projectile); kick(dt/2);
+   * @endcode
+   *
+   * with the projectile integrated beside it by the same scheme. All
+   * functions are collective over the model's MPI communicator.
+   */
+  class ImpactModel
+  {
+  public:
+    virtual ~ImpactModel() = default;
+
+    /** Short name, used in file names and column headers ("fe", "dem"). */
+    virtual std::string
+    name() const = 0;
+
+    /**
+     * Build the discretisation (mesh or particles), the masses and all
+     * other data, and compute the forces of the initial state.
+     * @param projectile the projectile at t = 0
+     * @param out stream for the set-up report (only rank 0 writes)
+     */
+    virtual void
+    setup(const Projectile &projectile, std::ostream &out) = 0;
+
+    /** Critical (largest stable) time step of the current configuration,
+     * before the safety factor [s]. */
+    virtual double
+    stable_time_step() const = 0;
+
+    /**
+     * Compute internal and contact forces at the current positions, and the
+     * accelerations that the next kick uses.
+     * @param projectile the projectile at its current position and velocity
+     * @param dt the current time step, for the work of friction and damping [s]
+     * @return force of the whole yarn on the projectile along y [N]
+     */
+    virtual double
+    compute_forces(const Projectile &projectile, const double dt) = 0;
+
+    /** Velocity update \f$v \mathrel{+}= \Delta t\, a\f$ with the
+     * accelerations of the last compute_forces(). @param dt [s] */
+    virtual void
+    kick(const double dt) = 0;
+
+    /** Position update \f$x \mathrel{+}= \Delta t\, v\f$. @param dt [s] */
+    virtual void
+    drift(const double dt) = 0;
+
+    /** Observables of the current state (collective). */
+    virtual Observables
+    observables() const = 0;
+
+    /** Whether the yarn has been cut through (no load path left between the
+     * clamps); the run stops then. */
+    virtual bool
+    yarn_cut_through() const = 0;
+
+    /** Axial properties for Smith theory and the consistency report. */
+    virtual AxialProperties
+    axial_properties() const = 0;
+
+    /** Mass of the whole yarn as discretised [kg]. */
+    virtual double
+    mass() const = 0;
+
+    /**
+     * Write a snapshot: `<directory>/<name>_<index>.pvtu` with its `.vtu`
+     * pieces.
+     * @return the file name of the record, relative to @p directory
+     */
+    virtual std::string
+    write_snapshot(const std::string &directory,
+                   const unsigned int index,
+                   const double       time) const = 0;
+
+    /** Number of cells (FE) or spheres (DEM) of the whole discretisation,
+     * for throughput figures. */
+    virtual unsigned long
+    n_elements() const = 0;
+  };
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,235 @@
+#ifndef yarn_impact_core_parameters_h
+#define yarn_impact_core_parameters_h
+
+#include <string>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace YarnImpact
+{
+  /**
+   * Parameters shared by both models: the yarn, the projectile, symmetry,
+   * time integration, output, wave-front definitions and the verification
+   * window. One struct per `.prm` subsection, in the manner of step-44.
+   * Every quantity is in SI units.
+   */
+  namespace Parameters
+  {
+    /** Which model(s) a run drives. */
+    enum class ModelType
+    {
+      fe,
+      dem,
+      both
+    };
+
+    /** Symmetry used to reduce the modelled domain (design.md section 4). */
+    enum class Symmetry
+    {
+      none,    ///< the whole yarn
+      half,    ///< x >= 0, symmetry plane x = 0
+      quarter, ///< x >= 0 and z >= 0, planes x = 0 and z = 0
+    };
+
+    /** Number of copies of the modelled part that make the whole yarn. */
+    unsigned int
+    symmetry_factor(const Symmetry symmetry);
+
+    /** Top-level entries (no subsection). */
+    struct General
+    {
+      /** Model(s) to run. */
+      ModelType model = ModelType::fe;
+      /** Symmetry of the modelled domain. */
+      Symmetry symmetry = Symmetry::half;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /** The yarn: geometry and fibre data (subsection `Yarn`). */
+    struct Yarn
+    {
+      /** Free length between the clamps [m]. */
+      double length = 25.4e-3;
+      /** Semi-axis of the elliptical section through the thickness, along y
+       * [m]. */
+      double thickness_semi_axis = 0.0575e-3;
+      /** Semi-axis of the elliptical section across the width, along z [m].
+       */
+      double width_semi_axis = 0.267e-3;
+      /** Number of fibres in the yarn [-]. */
+      unsigned int n_fibres = 400;
+      /** Fibre diameter [m]. */
+      double fibre_diameter = 12e-6;
+      /** Fibre density [kg/m^3]. */
+      double fibre_density = 1440.;
+      /** Fibre Young modulus along its axis [Pa]. */
+      double fibre_modulus = 84.62e9;
+      /** Longitudinal failure strain of fibres and yarn [-]. */
+      double failure_strain = 0.0452;
+      /** Whether failure (broken trusses, failed cells) is modelled. */
+      bool failure = true;
+
+      /** Area of the elliptical section, \f$\pi a_y a_z\f$ [m^2]. */
+      double
+      section_area() const;
+      /** Total area of the fibres, \f$N \pi d^2/4\f$ [m^2]. */
+      double
+      fibre_area() const;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /** How the projectile moves. */
+    enum class ProjectileMotion
+    {
+      free,                ///< the paper: rigid body decelerated by the yarn
+      prescribed_velocity, ///< constant velocity (Smith-theory verification)
+    };
+
+    /** The rigid cylindrical projectile (subsection `Projectile`). */
+    struct Projectile
+    {
+      /** Mass of the projectile [kg]. */
+      double mass = 9.91e-6;
+      /** Diameter of the cylinder [m]. */
+      double diameter = 2.2e-3;
+      /** Impact speed, towards -y [m/s]. */
+      double initial_velocity = 120.;
+      /** Free flight or prescribed constant velocity. */
+      ProjectileMotion motion = ProjectileMotion::free;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /** Explicit time integration (subsection `Time`). */
+    struct Time
+    {
+      /** Simulated time at which the run stops [s]. */
+      double end_time = 40e-6;
+      /** Fraction of the critical time step used [-]. */
+      double safety_factor = 0.8;
+      /** The stable step is recomputed every this many steps [-]. */
+      unsigned int time_step_update_interval = 10;
+      /** A run stops when the energy balance error exceeds this fraction of
+       * the initial energy [-]. */
+      double energy_error_limit = 0.05;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /** What the screen shows. */
+    enum class Verbosity
+    {
+      normal, ///< set-up, progress line with ETA, timing summary
+      quiet,  ///< set-up and summary only
+      test,   ///< deterministic scaled summary only (regression tests)
+    };
+
+    /** Output (subsection `Output`). */
+    struct Output
+    {
+      /** Directory that receives all output; created if missing. */
+      std::string directory = "results";
+      /** Simulated time between VTU snapshots [s]; 0 disables them. */
+      double snapshot_interval = 1e-6;
+      /** Simulated time between history rows [s]. */
+      double history_interval = 0.1e-6;
+      /** Wall-clock time between progress lines [s]. */
+      double progress_interval = 2.;
+      /** Screen verbosity. */
+      Verbosity verbosity = Verbosity::normal;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /**
+     * Thresholds that define the wave fronts, identical for both models
+     * (subsection `Wave fronts`, see analysis/wave_fronts.h).
+     */
+    struct WaveFronts
+    {
+      /** Longitudinal front: outermost station whose axial strain exceeds
+       * this value [-]. */
+      double strain_threshold = 2e-4;
+      /** Transverse front: outermost station whose deflection (towards -y)
+       * exceeds this value [m]. */
+      double deflection_threshold = 10e-6;
+      /** Spreading front: outermost station whose section width exceeds the
+       * initial width by this fraction [-]. */
+      double spreading_threshold = 0.02;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /**
+     * Time window in which the run is compared with Smith theory (subsection
+     * `Verification`): before the first reflected longitudinal wave returns
+     * to the impact point the yarn behaves as an infinite one.
+     */
+    struct Verification
+    {
+      /** Start of the window [s]. */
+      double window_start = 1e-6;
+      /** End of the window [s]. */
+      double window_end = 3e-6;
+      /** Checks to assert at the end of the run; a failed check makes the
+       * run exit with a non-zero code. */
+      bool check_deceleration       = false;
+      bool check_plateau_strain     = false;
+      bool check_longitudinal_speed = false;
+      bool check_transverse_speed   = false;
+      bool check_energy             = false;
+      /** Relative tolerance of the Smith-theory checks [-]. */
+      double tolerance = 0.03;
+      /** Largest energy error allowed by the energy check, as a fraction of
+       * the initial energy [-]. */
+      double energy_tolerance = 0.005;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /** All shared parameters. */
+    struct Shared
+    {
+      General      general;
+      Yarn         yarn;
+      Projectile   projectile;
+      Time         time;
+      Output       output;
+      WaveFronts   wave_fronts;
+      Verification verification;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+  } // namespace Parameters
+} // namespace YarnImpact
+
+#endif

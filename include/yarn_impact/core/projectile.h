@@ -1,0 +1,123 @@
+#ifndef yarn_impact_core_projectile_h
+#define yarn_impact_core_projectile_h
+
+#include <yarn_impact/core/parameters.h>
+
+namespace YarnImpact
+{
+  /**
+   * The rigid cylindrical projectile. Its axis is parallel to z (across the
+   * yarn's width); it moves along y only. At t = 0 its lowest line touches
+   * the top of the yarn at mid-span: the axis is at
+   * \f$y_c = a_y + R\f$, where \f$a_y\f$ is the thickness semi-axis.
+   *
+   * The projectile always carries the full mass; models return the force of
+   * the whole yarn (their modelled part times the symmetry factor), so its
+   * motion does not depend on the symmetry chosen.
+   *
+   * Time integration is velocity Verlet (kick-drift-kick), the same
+   * central-difference scheme the models use.
+   */
+  class Projectile
+  {
+  public:
+    /**
+     * @param parameters projectile data
+     * @param yarn_thickness_semi_axis semi-axis of the yarn section along y [m]
+     */
+    Projectile(const Parameters::Projectile &parameters,
+               const double                  yarn_thickness_semi_axis);
+
+    /** Radius of the cylinder [m]. */
+    double
+    radius() const
+    {
+      return r;
+    }
+
+    /** Mass [kg]. */
+    double
+    mass() const
+    {
+      return m;
+    }
+
+    /** Current y coordinate of the axis [m]. */
+    double
+    axis_position() const
+    {
+      return y;
+    }
+
+    /** Current velocity along y [m/s] (negative: towards the yarn). */
+    double
+    velocity() const
+    {
+      return v;
+    }
+
+    /** Speed in the impact direction, \f$-v_y\f$ [m/s]. */
+    double
+    impact_speed() const
+    {
+      return -v;
+    }
+
+    /** Displacement in the impact direction since t = 0 [m]. */
+    double
+    displacement() const
+    {
+      return y0 - y;
+    }
+
+    /** Kinetic energy [J]. */
+    double
+    kinetic_energy() const
+    {
+      return 0.5 * m * v * v;
+    }
+
+    /** Whether the velocity is prescribed (not changed by the yarn). */
+    bool
+    prescribed() const
+    {
+      return is_prescribed;
+    }
+
+    /**
+     * Half of a velocity-Verlet kick: \f$v \mathrel{+}= \Delta t F/m\f$ for a
+     * free projectile. For a prescribed velocity the work of the driving
+     * force \f$-F\f$ is accumulated instead.
+     * @param dt time increment [s]
+     * @param force force of the whole yarn on the projectile along y [N]
+     */
+    void
+    kick(const double dt, const double force);
+
+    /** Drift: \f$y \mathrel{+}= \Delta t\, v\f$. @param dt time increment [s] */
+    void
+    drift(const double dt)
+    {
+      y += dt * v;
+    }
+
+    /** Work done on the system by the driver that prescribes the velocity
+     * [J] (0 for a free projectile). */
+    double
+    external_work() const
+    {
+      return work;
+    }
+
+  private:
+    double m;
+    double r;
+    double y0;
+    double y;
+    double v;
+    bool   is_prescribed;
+    double work = 0.;
+  };
+} // namespace YarnImpact
+
+#endif

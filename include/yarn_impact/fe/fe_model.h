@@ -1,0 +1,33 @@
+#ifndef yarn_impact_fe_fe_model_h
+#define yarn_impact_fe_fe_model_h
+
+#include <yarn_impact/core/impact_model.h>
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/fe/parameters.h>
+
+#include <mpi.h>
+
+#include <memory>
+
+namespace YarnImpact
+{
+  /** The mesoscopic finite-element yarn model (design.md section 5). */
+  namespace FE
+  {
+    /**
+     * Check the FE parameters against the shared ones (a set-up that cannot
+     * be meshed, an unstable contact penalty); throws InputError.
+     */
+    void
+    validate(const YarnImpact::Parameters::Shared &shared,
+             const Parameters                     &parameters);
+
+    /** Create the FE model of the yarn described by @p shared. */
+    std::unique_ptr<ImpactModel>
+    create_model(const YarnImpact::Parameters::Shared &shared,
+                 const Parameters                     &parameters,
+                 const MPI_Comm                        communicator);
+  } // namespace FE
+} // namespace YarnImpact
+
+#endif

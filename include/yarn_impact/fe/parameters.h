@@ -1,0 +1,91 @@
+#ifndef yarn_impact_fe_parameters_h
+#define yarn_impact_fe_parameters_h
+
+#include <string>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace YarnImpact
+{
+  namespace FE
+  {
+    /** Constitutive law of the continuum yarn. */
+    enum class LawType
+    {
+      charmetant,                     ///< the paper's hyperelastic law
+      linear_transversely_isotropic, ///< the classical yarn model
+    };
+
+    /**
+     * Parameters of the Charmetant-type hyperelastic law
+     * \f$W = \tfrac12 k_e I_e^2 + k_{tc}|I_{tc}|^p + \tfrac12 k_{td}I_{td}^2\f$
+     * (paper Table 1, subsection `FE/Charmetant`).
+     */
+    struct CharmetantParameters
+    {
+      double k_e  = 80077.19e6; ///< elongation modulus [Pa]
+      double k_tc = 1055.82e6;  ///< compaction modulus [Pa]
+      double p    = 2.205;      ///< compaction exponent [-]
+      double k_td = 649.75e6;   ///< distortion modulus [Pa]
+    };
+
+    /**
+     * Parameters of the classical linear transversely isotropic yarn law in
+     * St. Venant-Kirchhoff form, fibre direction x (subsection
+     * `FE/Linear transversely isotropic`).
+     */
+    struct LinearParameters
+    {
+      double E_L   = 80077.19e6; ///< longitudinal Young modulus [Pa]
+      double E_T   = 650e6;      ///< transverse Young modulus [Pa]
+      double G_LT  = 650e6;      ///< longitudinal shear modulus [Pa]
+      double nu_LT = 0.;         ///< major Poisson ratio [-]
+      double nu_TT = 0.;         ///< transverse Poisson ratio [-]
+    };
+
+    /** Projectile-yarn contact (subsection `FE/Contact`). */
+    struct ContactParameters
+    {
+      /** Penalty: contact pressure per unit penetration [Pa/m]. */
+      double penalty = 5e13;
+      /** Coulomb friction coefficient between projectile and yarn [-]. */
+      double friction = 0.;
+      /** Viscous damping of the contact, fraction of critical [-]. */
+      double damping_ratio = 0.;
+      /** Sliding speed below which friction is regularised [m/s]. */
+      double regularisation_speed = 0.01;
+    };
+
+    /** All parameters of the FE model (subsection `FE`). */
+    struct Parameters
+    {
+      /** Constitutive law. */
+      LawType law = LawType::charmetant;
+      /** Density of the continuum yarn [kg/m^3]. */
+      double density = 1267.;
+      /** Derive the density from the DEM's mass per length (fibre density
+       * times fibre area over section area) instead of `Density`. */
+      bool density_from_fibres = false;
+      /** Cells along the whole yarn length [-]. */
+      unsigned int n_axial_cells = 100;
+      /** Refinements of the 12-cell section [-]. */
+      unsigned int section_refinements = 0;
+      /** Refinements of the 3D mesh in all directions [-]. */
+      unsigned int global_refinements = 0;
+
+      CharmetantParameters charmetant;
+      LinearParameters     linear;
+      ContactParameters    contact;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+  } // namespace FE
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,430 @@
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/core/parameter_tools.h>
+
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <cmath>
+
+namespace YarnImpact
+{
+  namespace Parameters
+  {
+    using namespace dealii;
+
+    unsigned int
+    symmetry_factor(const Symmetry symmetry)
+    {
+      switch (symmetry)
+        {
+          case Symmetry::none:
+            return 1;
+          case Symmetry::half:
+            return 2;
+          case Symmetry::quarter:
+            return 4;
+        }
+      return 1;
+    }
+
+
+    void
+    General::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Model",
+                        "fe",
+                        Patterns::Selection("fe|dem|both"),
+                        "Model to run: the mesoscopic finite-element yarn "
+                        "(fe), the microscopic discrete-element fibres (dem), "
+                        "or both on the same problem (both).");
+      prm.declare_entry(
+        "Symmetry",
+        "half",
+        Patterns::Selection("none|half|quarter"),
+        "Part of the yarn that is modelled: the whole yarn (none), x >= 0 with "
+        "the symmetry plane x = 0 (half), or x >= 0, z >= 0 with the planes "
+        "x = 0 and z = 0 (quarter). Reported masses, forces and energies are "
+        "always those of the whole yarn.");
+    }
+
+    void
+    General::parse_parameters(ParameterHandler &prm)
+    {
+      const std::string m = prm.get("Model");
+      model = (m == "fe" ? ModelType::fe :
+               m == "dem" ? ModelType::dem :
+                            ModelType::both);
+      const std::string s = prm.get("Symmetry");
+      symmetry = (s == "none" ? Symmetry::none :
+                  s == "half" ? Symmetry::half :
+                                Symmetry::quarter);
+    }
+
+
+    double
+    Yarn::section_area() const
+    {
+      return numbers::PI * thickness_semi_axis * width_semi_axis;
+    }
+
+    double
+    Yarn::fibre_area() const
+    {
+      return n_fibres * numbers::PI * fibre_diameter * fibre_diameter / 4.;
+    }
+
+    void
+    Yarn::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Yarn");
+      prm.declare_entry("Length",
+                        "0.0254",
+                        Patterns::Double(),
+                        "Free length of the yarn between the two clamps [m].");
+      prm.declare_entry("Thickness semi-axis",
+                        "0.0575e-3",
+                        Patterns::Double(),
+                        "Semi-axis of the elliptical cross-section through "
+                        "the yarn's thickness, along y, the impact direction "
+                        "[m].");
+      prm.declare_entry("Width semi-axis",
+                        "0.267e-3",
+                        Patterns::Double(),
+                        "Semi-axis of the elliptical cross-section across the "
+                        "yarn's width, along z, the projectile's axis [m].");
+      prm.declare_entry("Number of fibres",
+                        "400",
+                        Patterns::Integer(),
+                        "Number of fibres in the yarn [-].");
+      prm.declare_entry("Fibre diameter",
+                        "12e-6",
+                        Patterns::Double(),
+                        "Diameter of one fibre [m].");
+      prm.declare_entry("Fibre density",
+                        "1440",
+                        Patterns::Double(),
+                        "Density of the fibre material [kg/m^3].");
+      prm.declare_entry("Fibre Young modulus",
+                        "84.62e9",
+                        Patterns::Double(),
+                        "Young modulus of a fibre along its axis [Pa].");
+      prm.declare_entry("Failure strain",
+                        "0.0452",
+                        Patterns::Double(),
+                        "Longitudinal strain at which a fibre (DEM truss) or "
+                        "the yarn (FE cell) fails [-].");
+      prm.declare_entry("Failure",
+                        "true",
+                        Patterns::Bool(),
+                        "Whether failure at the failure strain is modelled; "
+                        "when false the yarn never breaks.");
+      prm.leave_subsection();
+    }
+
+    void
+    Yarn::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Yarn");
+      length              = get_positive_double(prm, "Yarn", "Length");
+      thickness_semi_axis = get_positive_double(prm, "Yarn", "Thickness semi-axis");
+      width_semi_axis = get_positive_double(prm, "Yarn", "Width semi-axis");
+      n_fibres        = get_positive_integer(prm, "Yarn", "Number of fibres");
+      fibre_diameter  = get_positive_double(prm, "Yarn", "Fibre diameter");
+      fibre_density   = get_positive_double(prm, "Yarn", "Fibre density");
+      fibre_modulus   = get_positive_double(prm, "Yarn", "Fibre Young modulus");
+      failure_strain  = get_positive_double(prm, "Yarn", "Failure strain");
+      failure         = prm.get_bool("Failure");
+      prm.leave_subsection();
+    }
+
+
+    void
+    Projectile::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Projectile");
+      prm.declare_entry("Mass",
+                        "9.91e-6",
+                        Patterns::Double(),
+                        "Mass of the rigid cylindrical projectile [kg].");
+      prm.declare_entry("Diameter",
+                        "2.2e-3",
+                        Patterns::Double(),
+                        "Diameter of the projectile; its axis is z, across "
+                        "the yarn's width [m].");
+      prm.declare_entry("Initial velocity",
+                        "120",
+                        Patterns::Double(),
+                        "Impact speed; the projectile starts touching the top of the "
+                        "yarn at mid-span and moves towards -y [m/s].");
+      prm.declare_entry(
+        "Motion",
+        "free",
+        Patterns::Selection("free|prescribed velocity"),
+        "free: a rigid body decelerated by the yarn (the paper); prescribed "
+        "velocity: the projectile keeps its initial velocity (Smith-theory "
+        "verification); the work done on the yarn is then counted in the "
+        "energy balance.");
+      prm.leave_subsection();
+    }
+
+    void
+    Projectile::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Projectile");
+      mass             = get_positive_double(prm, "Projectile", "Mass");
+      diameter         = get_positive_double(prm, "Projectile", "Diameter");
+      initial_velocity =
+        get_positive_double(prm, "Projectile", "Initial velocity");
+      motion           = (prm.get("Motion") == "free" ?
+                  ProjectileMotion::free :
+                  ProjectileMotion::prescribed_velocity);
+      prm.leave_subsection();
+    }
+
+
+    void
+    Time::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time");
+      prm.declare_entry("End time",
+                        "40e-6",
+                        Patterns::Double(),
+                        "Simulated time at which the run stops [s].");
+      prm.declare_entry("Safety factor",
+                        "0.8",
+                        Patterns::Double(),
+                        "Fraction of the critical explicit time step used, "
+                        "in (0, 1] [-].");
+      prm.declare_entry("Time step update interval",
+                        "10",
+                        Patterns::Integer(),
+                        "The stable time step is recomputed from the current "
+                        "configuration every this many steps [-].");
+      prm.declare_entry(
+        "Energy error limit",
+        "0.05",
+        Patterns::Double(),
+        "The run stops with an error when the energy balance error exceeds "
+        "this fraction of the initial energy (a numerical blow-up) [-].");
+      prm.leave_subsection();
+    }
+
+    void
+    Time::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time");
+      end_time      = get_positive_double(prm, "Time", "End time");
+      safety_factor = get_positive_double(prm, "Time", "Safety factor");
+      require(safety_factor <= 1.,
+              "Time/Safety factor",
+              "must not exceed 1: a larger step than the critical one is "
+              "unstable");
+      time_step_update_interval =
+        get_positive_integer(prm, "Time", "Time step update interval");
+      energy_error_limit =
+        get_positive_double(prm, "Time", "Energy error limit");
+      prm.leave_subsection();
+    }
+
+
+    void
+    Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      prm.declare_entry("Directory",
+                        "results",
+                        Patterns::Anything(),
+                        "Directory that receives parameters.prm, the history "
+                        "CSV, the VTU snapshots and the summary; created if "
+                        "missing.");
+      prm.declare_entry("Snapshot interval",
+                        "1e-6",
+                        Patterns::Double(),
+                        "Simulated time between two VTU snapshots; 0 writes "
+                        "none [s].");
+      prm.declare_entry("History interval",
+                        "0.1e-6",
+                        Patterns::Double(),
+                        "Simulated time between two rows of the history CSV "
+                        "[s].");
+      prm.declare_entry("Progress interval",
+                        "2",
+                        Patterns::Double(),
+                        "Wall-clock time between two progress lines [s].");
+      prm.declare_entry(
+        "Verbosity",
+        "normal",
+        Patterns::Selection("normal|quiet|test"),
+        "normal: set-up, progress lines with ETA and a timing summary; "
+        "quiet: set-up and summary; test: the deterministic, scaled summary "
+        "only (used by the regression tests).");
+      prm.leave_subsection();
+    }
+
+    void
+    Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      directory = prm.get("Directory");
+      require(!directory.empty(),
+              "Output/Directory",
+              "must not be empty");
+      snapshot_interval = prm.get_double("Snapshot interval");
+      require(snapshot_interval >= 0.,
+              "Output/Snapshot interval",
+              "must not be negative");
+      history_interval =
+        get_positive_double(prm, "Output", "History interval");
+      progress_interval =
+        get_positive_double(prm, "Output", "Progress interval");
+      const std::string v = prm.get("Verbosity");
+      verbosity           = (v == "normal" ? Verbosity::normal :
+                             v == "quiet"  ? Verbosity::quiet :
+                                             Verbosity::test);
+      prm.leave_subsection();
+    }
+
+
+    void
+    WaveFronts::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Wave fronts");
+      prm.declare_entry("Strain threshold",
+                        "2e-4",
+                        Patterns::Double(),
+                        "Longitudinal front: the outermost axial station "
+                        "whose longitudinal strain exceeds this value [-].");
+      prm.declare_entry("Deflection threshold",
+                        "10e-6",
+                        Patterns::Double(),
+                        "Transverse front: the outermost axial station whose "
+                        "deflection in the impact direction exceeds this "
+                        "value [m].");
+      prm.declare_entry("Spreading threshold",
+                        "0.02",
+                        Patterns::Double(),
+                        "Spreading front: the outermost axial station whose "
+                        "section width exceeds its initial width by this "
+                        "fraction [-].");
+      prm.leave_subsection();
+    }
+
+    void
+    WaveFronts::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Wave fronts");
+      strain_threshold =
+        get_positive_double(prm, "Wave fronts", "Strain threshold");
+      deflection_threshold =
+        get_positive_double(prm, "Wave fronts", "Deflection threshold");
+      spreading_threshold =
+        get_positive_double(prm, "Wave fronts", "Spreading threshold");
+      prm.leave_subsection();
+    }
+
+
+    void
+    Verification::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Verification");
+      prm.declare_entry("Window start",
+                        "1e-6",
+                        Patterns::Double(),
+                        "Start of the time window in which the run is "
+                        "compared with Smith theory (mean deceleration, "
+                        "strain behind the longitudinal front, front "
+                        "speeds) [s].");
+      prm.declare_entry("Window end",
+                        "3e-6",
+                        Patterns::Double(),
+                        "End of that window; it should end before the first "
+                        "longitudinal wave reflected at a clamp is back at "
+                        "the impact point [s].");
+      prm.declare_entry(
+        "Checks",
+        "",
+        Patterns::MultipleSelection(
+          "deceleration|plateau strain|longitudinal speed|transverse "
+          "speed|energy"),
+        "Checks asserted at the end of the run; the run exits with a "
+        "non-zero code when one fails. deceleration: mean projectile "
+        "deceleration in the window against Smith theory; plateau strain: "
+        "strain behind the longitudinal front; longitudinal speed and "
+        "transverse speed: front speeds fitted in the window (laboratory "
+        "frame); energy: largest energy balance error of the run.");
+      prm.declare_entry("Tolerance",
+                        "0.03",
+                        Patterns::Double(0.),
+                        "Relative tolerance of the Smith-theory checks [-].");
+      prm.declare_entry("Energy tolerance",
+                        "0.005",
+                        Patterns::Double(0.),
+                        "Largest energy balance error accepted by the energy "
+                        "check, as a fraction of the initial energy [-].");
+      prm.leave_subsection();
+    }
+
+    void
+    Verification::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Verification");
+      window_start = prm.get_double("Window start");
+      window_end   = prm.get_double("Window end");
+      require(window_start >= 0.,
+              "Verification/Window start",
+              "must not be negative");
+      require(window_end > window_start,
+              "Verification/Window end",
+              "must be later than Window start");
+      const std::string checks = prm.get("Checks");
+      const auto        has    = [&checks](const std::string &name) {
+        for (const auto &item : Utilities::split_string_list(checks))
+          if (item == name)
+            return true;
+        return false;
+      };
+      check_deceleration       = has("deceleration");
+      check_plateau_strain     = has("plateau strain");
+      check_longitudinal_speed = has("longitudinal speed");
+      check_transverse_speed   = has("transverse speed");
+      check_energy             = has("energy");
+      tolerance                = prm.get_double("Tolerance");
+      energy_tolerance         = prm.get_double("Energy tolerance");
+      prm.leave_subsection();
+    }
+
+
+    void
+    Shared::declare_parameters(ParameterHandler &prm)
+    {
+      General::declare_parameters(prm);
+      Yarn::declare_parameters(prm);
+      Projectile::declare_parameters(prm);
+      Time::declare_parameters(prm);
+      Output::declare_parameters(prm);
+      WaveFronts::declare_parameters(prm);
+      Verification::declare_parameters(prm);
+    }
+
+    void
+    Shared::parse_parameters(ParameterHandler &prm)
+    {
+      general.parse_parameters(prm);
+      yarn.parse_parameters(prm);
+      projectile.parse_parameters(prm);
+      time.parse_parameters(prm);
+      output.parse_parameters(prm);
+      wave_fronts.parse_parameters(prm);
+      verification.parse_parameters(prm);
+
+      require(yarn.width_semi_axis >= yarn.thickness_semi_axis,
+              "Yarn/Width semi-axis",
+              "must not be smaller than Yarn/Thickness semi-axis (the "
+              "projectile hits the flat side of the yarn)");
+      require(projectile.diameter < yarn.length,
+              "Projectile/Diameter",
+              "must be smaller than Yarn/Length");
+    }
+  } // namespace Parameters
+} // namespace YarnImpact

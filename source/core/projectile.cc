@@ -1,0 +1,25 @@
+#include <yarn_impact/core/projectile.h>
+
+namespace YarnImpact
+{
+  Projectile::Projectile(const Parameters::Projectile &parameters,
+                         const double                  yarn_thickness_semi_axis)
+    : m(parameters.mass)
+    , r(0.5 * parameters.diameter)
+    , y0(yarn_thickness_semi_axis + 0.5 * parameters.diameter)
+    , y(y0)
+    , v(-parameters.initial_velocity)
+    , is_prescribed(parameters.motion ==
+                    Parameters::ProjectileMotion::prescribed_velocity)
+  {}
+
+  void
+  Projectile::kick(const double dt, const double force)
+  {
+    if (is_prescribed)
+      // The driver applies -force; its power is -force * v.
+      work += -force * v * dt;
+    else
+      v += dt * force / m;
+  }
+} // namespace YarnImpact
