@@ -124,7 +124,7 @@ namespace YarnImpact
     }
     try
       {
-        prm.parse_input(file, "", true, false);
+        prm.parse_input(file, "", false, false);
       }
     catch (const ExceptionBase &e)
       {

@@ -1,5 +1,6 @@
 #include <yarn_impact/application.h>
 
+#include <deal.II/base/logstream.h>
 #include <deal.II/base/mpi.h>
 
 #include <exception>
