@@ -1,0 +1,197 @@
+#ifndef yarn_impact_fe_constitutive_law_h
+#define yarn_impact_fe_constitutive_law_h
+
+#include <yarn_impact/fe/parameters.h>
+
+#include <cmath>
+
+namespace YarnImpact
+{
+  namespace FE
+  {
+    /**
+     * A 3x3 matrix stored row by row, F[3*i + j] = F_ij. The laws work on
+     * plain arrays so that the hot loop of the FE model stays free of
+     * temporaries; deal.II tensors are used around it.
+     */
+    using Matrix3 = double[9];
+
+    /** The three physical invariants of the Charmetant law (physics.md
+     * section 1.2), fibre direction M = e_x. */
+    struct Invariants
+    {
+      /** Fibre elongation \f$I_e = \ln\lambda_f\f$ [-]. */
+      double elongation = 0.;
+      /** Transverse compaction \f$I_{tc} = \tfrac14\ln(I_3/I_4)\f$ [-]. */
+      double compaction = 0.;
+      /** Transverse distortion \f$I_{td} = \tfrac12\,\mathrm{asinh}(s)\f$
+       * [-]. */
+      double distortion = 0.;
+    };
+
+    /**
+     * The revisited Charmetant law of the paper (Eq. 1-4, Table 1):
+     * \f[
+     *   W = \tfrac12 k_e I_e^2 + k_{tc}|I_{tc}|^p + \tfrac12 k_{td} I_{td}^2,
+     * \f]
+     * with the NaN-free evaluation of physics.md section 1.5: the distortion
+     * measure comes from the Schur complement of C on the section plane,
+     * \f$I_{td} = \tfrac12\mathrm{asinh}(s)\f$, and never from
+     * \f$\mathrm{acosh}\,\zeta\f$.
+     */
+    class CharmetantLaw
+    {
+    public:
+      /** @param parameters the moduli @param density [kg/m^3] */
+      CharmetantLaw(const CharmetantParameters &parameters,
+                    const double                density);
+
+      /**
+       * First Piola-Kirchhoff stress and energy density.
+       * @param F deformation gradient (row-major)
+       * @param P first Piola-Kirchhoff stress [Pa] (output, row-major)
+       * @param inv invariants (output)
+       * @return strain energy density W [J/m^3]
+       */
+      double
+      stress(const Matrix3 &F, Matrix3 &P, Invariants &inv) const;
+
+      /**
+       * Second Piola-Kirchhoff stress S = 2 dW/dC from the right
+       * Cauchy-Green tensor (row-major, symmetric) and J = det F.
+       * @return W [J/m^3]
+       */
+      double
+      second_piola(const Matrix3 &C,
+                   const double   J,
+                   Matrix3       &S,
+                   Invariants    &inv) const;
+
+      /**
+       * Energy density as a function of C, templated so that it can be
+       * differentiated automatically (tests compare S with 2 dW/dC).
+       * @param C right Cauchy-Green tensor (row-major)
+       */
+      template <typename Number>
+      Number
+      energy(const Number (&C)[9]) const;
+
+      /** Small-strain axial modulus k_e [Pa]. */
+      double
+      axial_modulus() const
+      {
+        return k_e;
+      }
+
+      /** Modulus of the transverse P wave at a compaction state,
+       * \f$K_T(I_{tc}) + k_{td}/4\f$ with \f$K_T = p(p-1)k_{tc}/4
+       * |I_{tc}|^{p-2}\f$ (physics.md section 1.8), bounded at the
+       * reference state by its value at |I_tc| = 1e-3 [Pa]. */
+      double
+      transverse_modulus(const Invariants &inv) const;
+
+      /** Uniaxial nominal stress \f$P(\varepsilon) = k_e
+       * \ln(1+\varepsilon)/(1+\varepsilon)\f$ [Pa]. */
+      double
+      uniaxial_nominal_stress(const double strain) const
+      {
+        return k_e * std::log1p(strain) / (1. + strain);
+      }
+
+      /** Density [kg/m^3]. */
+      double density;
+
+    private:
+      double k_e, k_tc, p, k_td;
+    };
+
+
+    /**
+     * The classical linear transversely isotropic yarn law, fibre direction
+     * x, in St. Venant-Kirchhoff form: \f$S = \mathbb{C} : E\f$ with the
+     * Green-Lagrange strain E. With the default null Poisson ratios the
+     * section does not react to axial strain: the paper's point.
+     */
+    class LinearTransverselyIsotropicLaw
+    {
+    public:
+      /** @param parameters the moduli @param density [kg/m^3] */
+      LinearTransverselyIsotropicLaw(const LinearParameters &parameters,
+                                     const double            density);
+
+      /** First Piola-Kirchhoff stress and energy density, as
+       * CharmetantLaw::stress(); the invariants are filled too. */
+      double
+      stress(const Matrix3 &F, Matrix3 &P, Invariants &inv) const;
+
+      /** Axial P-wave modulus \f$\mathbb{C}_{1111}\f$ [Pa]. */
+      double
+      axial_modulus() const
+      {
+        return C11;
+      }
+
+      /** Transverse P-wave modulus \f$\mathbb{C}_{2222}\f$ [Pa]. */
+      double
+      transverse_modulus(const Invariants &) const
+      {
+        return C22;
+      }
+
+      /** Uniaxial nominal stress of the SVK bar under free lateral
+       * contraction, \f$P = E_L (\varepsilon + \varepsilon^2/2)
+       * (1+\varepsilon)\f$ [Pa] (exact for null Poisson ratios). */
+      double
+      uniaxial_nominal_stress(const double strain) const
+      {
+        return E_L * (strain + 0.5 * strain * strain) * (1. + strain);
+      }
+
+      /** Density [kg/m^3]. */
+      double density;
+
+    private:
+      double E_L;
+      /** Stiffness in Voigt form (x = 1, y = 2, z = 3). */
+      double C11, C12, C22, C23, G12, G23;
+    };
+
+    /** Compute the invariants of the Charmetant law from F (row-major). */
+    Invariants
+    charmetant_invariants(const Matrix3 &F);
+
+
+    template <typename Number>
+    Number
+    CharmetantLaw::energy(const Number (&C)[9]) const
+    {
+      using std::abs;
+      using std::asinh;
+      using std::log;
+      using std::pow;
+      using std::sqrt;
+      // Symmetric parts, so that d/dC_ij of this expression is the
+      // derivative with respect to a symmetric tensor.
+      const Number c00 = C[0], c11 = C[4], c22 = C[8];
+      const Number c01 = 0.5 * (C[1] + C[3]);
+      const Number c02 = 0.5 * (C[2] + C[6]);
+      const Number c12 = 0.5 * (C[5] + C[7]);
+      const Number I4  = c00;
+      const Number I3  = c00 * (c11 * c22 - c12 * c12) -
+                        c01 * (c01 * c22 - c12 * c02) +
+                        c02 * (c01 * c12 - c11 * c02);
+      const Number Ie  = 0.5 * log(I4);
+      const Number Itc = 0.25 * log(I3 / I4);
+      const Number t11 = c11 - c01 * c01 / I4;
+      const Number t22 = c22 - c02 * c02 / I4;
+      const Number t12 = c12 - c01 * c02 / I4;
+      const Number s2 =
+        ((t11 - t22) * (t11 - t22) + 4. * t12 * t12) / (4. * I3 / I4);
+      const Number Itd = 0.5 * asinh(sqrt(s2));
+      return 0.5 * k_e * Ie * Ie + k_tc * pow(abs(Itc), p) +
+             0.5 * k_td * Itd * Itd;
+    }
+  } // namespace FE
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,58 @@
+#ifndef yarn_impact_fe_yarn_mesh_h
+#define yarn_impact_fe_yarn_mesh_h
+
+#include <yarn_impact/core/parameters.h>
+
+namespace dealii
+{
+  template <int dim, int spacedim>
+  class Triangulation;
+}
+
+namespace YarnImpact
+{
+  namespace FE
+  {
+    /** Boundary ids of the yarn mesh. */
+    namespace BoundaryIds
+    {
+      /** Lateral surface, where the projectile can touch. */
+      constexpr unsigned int lateral = 0;
+      /** Clamped end x = +-L/2. */
+      constexpr unsigned int clamp = 1;
+      /** Symmetry plane x = 0. */
+      constexpr unsigned int symmetry_x = 2;
+      /** Symmetry plane z = 0. */
+      constexpr unsigned int symmetry_z = 3;
+    } // namespace BoundaryIds
+
+    /**
+     * The elliptical section in the (y, z) plane, as a 2D mesh whose first
+     * coordinate is y (thickness semi-axis a_y) and second is z (width
+     * semi-axis a_z): `GridGenerator::hyper_ball_balanced` (12 cells),
+     * refined @p refinements times on the unit disk with its manifolds, then
+     * scaled to the ellipse. For quarter symmetry only the cells with z >= 0
+     * are kept.
+     */
+    void
+    create_yarn_section(dealii::Triangulation<2, 2> &section,
+                        const double                 a_y,
+                        const double                 a_z,
+                        const unsigned int           refinements,
+                        const bool                   half_section);
+
+    /**
+     * The yarn: the section extruded along x over [-L/2, L/2] (symmetry
+     * none) or [0, L/2] (half, quarter) with @p n_axial_cells over the whole
+     * length, boundary ids of BoundaryIds set by position.
+     */
+    void
+    create_yarn_mesh(dealii::Triangulation<3, 3>    &mesh,
+                     const YarnImpact::Parameters::Yarn &yarn,
+                     const YarnImpact::Parameters::Symmetry symmetry,
+                     const unsigned int              n_axial_cells,
+                     const unsigned int              section_refinements);
+  } // namespace FE
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,106 @@
+#include <yarn_impact/fe/yarn_mesh.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <cmath>
+#include <set>
+
+namespace YarnImpact
+{
+  namespace FE
+  {
+    using namespace dealii;
+
+    void
+    create_yarn_section(Triangulation<2, 2> &section,
+                        const double         a_y,
+                        const double         a_z,
+                        const unsigned int   refinements,
+                        const bool           half_section)
+    {
+      Triangulation<2> disk;
+      GridGenerator::hyper_ball_balanced(disk, Point<2>(), 1.);
+      disk.refine_global(refinements);
+
+      Triangulation<2> flat;
+      flat.copy_triangulation(disk);
+      if (half_section)
+        {
+          std::set<Triangulation<2>::active_cell_iterator> removed;
+          for (const auto &cell : flat.active_cell_iterators())
+            if (cell->center()[1] < 0.)
+              removed.insert(cell);
+          Triangulation<2> half;
+          GridGenerator::create_triangulation_with_removed_cells(flat,
+                                                                 removed,
+                                                                 half);
+          flat.clear();
+          flat.copy_triangulation(half);
+        }
+      GridTools::transform(
+        [a_y, a_z](const Point<2> &p) {
+          return Point<2>(a_y * p[0], a_z * p[1]);
+        },
+        flat);
+      // Keep only the geometry: the manifolds of the unit disk do not
+      // describe the ellipse.
+      flat.reset_all_manifolds();
+      flat.set_all_manifold_ids(numbers::flat_manifold_id);
+
+      // Flatten to a coarse mesh (no hierarchy) for the extrusion.
+      section.clear();
+      GridGenerator::flatten_triangulation(flat, section);
+    }
+
+
+    void
+    create_yarn_mesh(Triangulation<3, 3>       &mesh,
+                     const Parameters::Yarn    &yarn,
+                     const Parameters::Symmetry symmetry,
+                     const unsigned int         n_axial_cells,
+                     const unsigned int         section_refinements)
+    {
+      const bool reduced = symmetry != Parameters::Symmetry::none;
+      Triangulation<2> section;
+      create_yarn_section(section,
+                          yarn.thickness_semi_axis,
+                          yarn.width_semi_axis,
+                          section_refinements,
+                          symmetry == Parameters::Symmetry::quarter);
+
+      const unsigned int n_slices = reduced ? n_axial_cells / 2 : n_axial_cells;
+      const double length = reduced ? 0.5 * yarn.length : yarn.length;
+      Triangulation<3> extruded;
+      GridGenerator::extrude_triangulation(section,
+                                           n_slices + 1,
+                                           length,
+                                           extruded);
+      // Extrusion is along the third coordinate; a cyclic permutation (a
+      // rotation, so cells keep their orientation) makes it the yarn axis x.
+      const double x0 = reduced ? 0. : -0.5 * yarn.length;
+      GridTools::transform(
+        [x0](const Point<3> &p) { return Point<3>(p[2] + x0, p[0], p[1]); },
+        extruded);
+
+      const double tol = 1e-6 * yarn.length / n_axial_cells;
+      for (const auto &cell : extruded.active_cell_iterators())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            {
+              const Point<3> c = face->center();
+              if (std::abs(std::abs(c[0]) - 0.5 * yarn.length) < tol)
+                face->set_boundary_id(BoundaryIds::clamp);
+              else if (reduced && std::abs(c[0]) < tol)
+                face->set_boundary_id(BoundaryIds::symmetry_x);
+              else if (symmetry == Parameters::Symmetry::quarter &&
+                       std::abs(c[2]) < 1e-9 * yarn.width_semi_axis)
+                face->set_boundary_id(BoundaryIds::symmetry_z);
+              else
+                face->set_boundary_id(BoundaryIds::lateral);
+            }
+      mesh.copy_triangulation(extruded);
+    }
+  } // namespace FE
+} // namespace YarnImpact
