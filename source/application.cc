@@ -23,7 +23,7 @@ namespace YarnImpact
     one_line(const std::string &text)
     {
       std::string result;
-      bool        space = false;
+      bool space = false;
       for (const char c : text)
         if (std::isspace(static_cast<unsigned char>(c)))
           space = !result.empty();
@@ -54,7 +54,7 @@ namespace YarnImpact
     void
     prepare_output_directory(const std::string &directory, const bool is_root)
     {
-      bool        ok = true;
+      bool ok = true;
       std::string reason;
       if (is_root)
         {
@@ -68,7 +68,7 @@ namespace YarnImpact
           else
             {
               const std::string probe = directory + "/.yarn-impact-probe";
-              std::ofstream     f(probe);
+              std::ofstream f(probe);
               ok = static_cast<bool>(f << "probe");
               f.close();
               std::filesystem::remove(probe, ec);
@@ -76,12 +76,10 @@ namespace YarnImpact
                 reason = "not writable";
             }
         }
-      const bool all_ok =
-        Utilities::MPI::min(ok ? 1 : 0, MPI_COMM_WORLD) == 1;
+      const bool all_ok = Utilities::MPI::min(ok ? 1 : 0, MPI_COMM_WORLD) == 1;
       Parameters::require(all_ok,
                           "Output/Directory",
-                          "= '" + directory +
-                            "' cannot be used for output (" +
+                          "= '" + directory + "' cannot be used for output (" +
                             (reason.empty() ? "failed on rank 0" : reason) +
                             ")");
     }
@@ -178,7 +176,8 @@ namespace YarnImpact
         !check_only)
       {
         if (is_root)
-          std::cerr << "yarn-impact: error: invalid command line\n" << usage;
+          std::cerr << "yarn-impact: error: invalid command line (see "
+                       "yarn-impact --help)\n";
         return 2;
       }
     const std::string file = args.back();
@@ -193,7 +192,7 @@ namespace YarnImpact
             return 0;
           }
 
-        const auto       &output = parameters.shared.output;
+        const auto &output = parameters.shared.output;
         prepare_output_directory(output.directory, is_root);
         if (is_root)
           {
@@ -207,7 +206,7 @@ namespace YarnImpact
         else
           models = {parameters.shared.general.model};
 
-        bool              passed = true;
+        bool passed = true;
         std::ostringstream summary_text;
         for (const auto type : models)
           {

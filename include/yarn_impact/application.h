@@ -19,8 +19,8 @@ namespace YarnImpact
   struct AllParameters
   {
     Parameters::Shared shared;
-    FE::Parameters     fe;
-    DEM::Parameters    dem;
+    FE::Parameters fe;
+    DEM::Parameters dem;
 
     /** Declare every entry. */
     static void

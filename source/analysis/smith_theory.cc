@@ -25,12 +25,12 @@ namespace YarnImpact
       double
       inflow_velocity(const AxialProperties &axial, const double eps)
       {
-        const unsigned int n  = 64;
-        const double       h  = eps / n;
-        const double       g  = std::sqrt(0.6);
-        const double       xg[3] = {-g, 0., g};
-        const double       wg[3] = {5. / 9., 8. / 9., 5. / 9.};
-        double             sum   = 0.;
+        const unsigned int n = 64;
+        const double h       = eps / n;
+        const double g       = std::sqrt(0.6);
+        const double xg[3]   = {-g, 0., g};
+        const double wg[3]   = {5. / 9., 8. / 9., 5. / 9.};
+        double sum           = 0.;
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int q = 0; q < 3; ++q)
             sum += wg[q] * 0.5 * h *
@@ -43,16 +43,16 @@ namespace YarnImpact
       impact_speed_for_strain(const AxialProperties &axial, const double eps)
       {
         const double w = inflow_velocity(axial, eps);
-        const double U = std::sqrt(axial.nominal_stress(eps) /
-                                   (axial.density * (1. + eps)));
+        const double U =
+          std::sqrt(axial.nominal_stress(eps) / (axial.density * (1. + eps)));
         return std::sqrt(std::max(w * (2. * (1. + eps) * U - w), 0.));
       }
     } // namespace
 
     SmithSolution
     smith_solution(const AxialProperties &axial,
-                   const double           impact_speed,
-                   const double           projectile_mass)
+                   const double impact_speed,
+                   const double projectile_mass)
     {
       if (!(impact_speed > 0.) || !axial.nominal_stress)
         throw std::invalid_argument("Smith theory needs a positive speed");
@@ -69,17 +69,16 @@ namespace YarnImpact
       s.inflow_velocity = inflow_velocity(axial, s.strain);
       s.material_speed  = std::sqrt(axial.nominal_stress(s.strain) /
                                    (axial.density * (1. + s.strain)));
-      s.lab_speed = (1. + s.strain) * s.material_speed - s.inflow_velocity;
-      s.angle     = std::atan2(impact_speed, s.lab_speed);
-      s.tension   = axial.nominal_stress(s.strain) * axial.area;
-      s.force     = 2. * s.tension * std::sin(s.angle);
+      s.lab_speed    = (1. + s.strain) * s.material_speed - s.inflow_velocity;
+      s.angle        = std::atan2(impact_speed, s.lab_speed);
+      s.tension      = axial.nominal_stress(s.strain) * axial.area;
+      s.force        = 2. * s.tension * std::sin(s.angle);
       s.deceleration = s.force / projectile_mass;
       return s;
     }
 
     double
-    critical_velocity(const AxialProperties &axial,
-                      const double           failure_strain)
+    critical_velocity(const AxialProperties &axial, const double failure_strain)
     {
       return impact_speed_for_strain(axial, failure_strain);
     }

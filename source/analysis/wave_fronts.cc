@@ -15,7 +15,7 @@ namespace YarnImpact
     }
 
     WaveFrontPositions
-    measure_wave_fronts(const StationProfile         &profile,
+    measure_wave_fronts(const StationProfile &profile,
                         const Parameters::WaveFronts &thresholds)
     {
       WaveFrontPositions fronts;
@@ -38,11 +38,11 @@ namespace YarnImpact
 
       // Smith's plateau: the middle half between the two fronts, away from
       // the kink at the transverse front and from the longitudinal fan.
-      const double lo = fronts.transverse +
-                        0.25 * (fronts.longitudinal - fronts.transverse);
-      const double hi = fronts.transverse +
-                        0.75 * (fronts.longitudinal - fronts.transverse);
-      double       sum = 0.;
+      const double lo =
+        fronts.transverse + 0.25 * (fronts.longitudinal - fronts.transverse);
+      const double hi =
+        fronts.transverse + 0.75 * (fronts.longitudinal - fronts.transverse);
+      double sum         = 0.;
       unsigned int count = 0;
       for (unsigned int i = 0; i < n; ++i)
         if (profile.position[i] >= lo && profile.position[i] <= hi)

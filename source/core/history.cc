@@ -31,7 +31,7 @@ namespace YarnImpact
 
   History::History(const std::string &directory,
                    const std::string &model_name,
-                   const bool         is_root)
+                   const bool is_root)
   {
     if (!is_root)
       return;
@@ -53,14 +53,14 @@ namespace YarnImpact
     file << r.time * 1e6 << ',' << r.step << ',' << r.time_step * 1e9 << ','
          << r.projectile_displacement * 1e3 << ',' << r.projectile_velocity
          << ',' << r.contact_force << ',' << m.kinetic_energy * 1e3 << ','
-         << r.projectile_kinetic_energy * 1e3 << ','
-         << m.elastic_energy * 1e3 << ',' << m.contact_energy * 1e3 << ','
-         << m.dissipated_energy * 1e3 << ',' << r.external_work * 1e3 << ','
-         << r.energy_error * 1e2 << ',' << m.max_strain << ',' << m.n_failed
-         << ',' << m.fronts.longitudinal * 1e3 << ','
-         << m.fronts.transverse * 1e3 << ',' << m.fronts.spreading * 1e3
-         << ',' << m.fronts.width_at_impact * 1e3 << ','
-         << m.fronts.plateau_strain << '\n';
+         << r.projectile_kinetic_energy * 1e3 << ',' << m.elastic_energy * 1e3
+         << ',' << m.contact_energy * 1e3 << ',' << m.dissipated_energy * 1e3
+         << ',' << r.external_work * 1e3 << ',' << r.energy_error * 1e2 << ','
+         << m.max_strain << ',' << m.n_failed << ','
+         << m.fronts.longitudinal * 1e3 << ',' << m.fronts.transverse * 1e3
+         << ',' << m.fronts.spreading * 1e3 << ','
+         << m.fronts.width_at_impact * 1e3 << ',' << m.fronts.plateau_strain
+         << '\n';
     file.flush();
   }
 } // namespace YarnImpact

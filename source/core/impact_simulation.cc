@@ -23,8 +23,8 @@ namespace YarnImpact
     template <typename Getter>
     double
     interpolate(const std::vector<HistoryRow> &rows,
-                const double                   t,
-                const Getter                  &get)
+                const double t,
+                const Getter &get)
     {
       if (rows.empty())
         return 0.;
@@ -33,8 +33,8 @@ namespace YarnImpact
       for (unsigned int i = 1; i < rows.size(); ++i)
         if (rows[i].time >= t)
           {
-            const double a = (t - rows[i - 1].time) /
-                             (rows[i].time - rows[i - 1].time);
+            const double a =
+              (t - rows[i - 1].time) / (rows[i].time - rows[i - 1].time);
             return (1. - a) * get(rows[i - 1]) + a * get(rows[i]);
           }
       return get(rows.back());
@@ -44,11 +44,11 @@ namespace YarnImpact
     template <typename Getter>
     double
     fitted_rate(const std::vector<HistoryRow> &rows,
-                const double                   t0,
-                const double                   t1,
-                const Getter                  &get)
+                const double t0,
+                const double t1,
+                const Getter &get)
     {
-      double       st = 0., sy = 0., stt = 0., sty = 0.;
+      double st = 0., sy = 0., stt = 0., sty = 0.;
       unsigned int n = 0;
       for (const auto &r : rows)
         if (r.time >= t0 - 1e-15 && r.time <= t1 + 1e-15)
@@ -65,15 +65,15 @@ namespace YarnImpact
 
     std::string
     format_check(const std::string &name,
-                 const double       measured,
-                 const double       reference,
-                 const double       scale,
+                 const double measured,
+                 const double reference,
+                 const double scale,
                  const std::string &unit,
-                 const double       tolerance,
-                 bool              &passed)
+                 const double tolerance,
+                 bool &passed)
     {
       const double error = (measured - reference) / std::abs(reference);
-      const bool   ok    = std::abs(error) <= tolerance;
+      const bool ok      = std::abs(error) <= tolerance;
       passed             = passed && ok;
       std::ostringstream s;
       s << std::fixed << std::setprecision(4) << name << ": measured "
@@ -89,48 +89,47 @@ namespace YarnImpact
   class ImpactSimulation::Implementation
   {
   public:
-    Implementation(const Parameters::Shared     &parameters,
+    Implementation(const Parameters::Shared &parameters,
                    std::unique_ptr<ImpactModel> model,
-                   const MPI_Comm                communicator,
-                   std::ostream                 &out)
+                   const MPI_Comm communicator,
+                   std::ostream &out)
       : parameters(parameters)
       , model(std::move(model))
       , communicator(communicator)
       , is_root(Utilities::MPI::this_mpi_process(communicator) == 0)
       , out(out, is_root)
-      , projectile(parameters.projectile,
-                   parameters.yarn.thickness_semi_axis)
+      , projectile(parameters.projectile, parameters.yarn.thickness_semi_axis)
     {}
 
     RunSummary
     run();
 
     HistoryRow
-    make_row(const double        time,
+    make_row(const double time,
              const unsigned long step,
-             const double        dt,
-             const double        force) const;
+             const double dt,
+             const double force) const;
 
     void
     write_snapshot(const double time);
 
-    const Parameters::Shared                 &parameters;
-    std::unique_ptr<ImpactModel>              model;
-    MPI_Comm                                  communicator;
-    bool                                      is_root;
-    ConditionalOStream                        out;
-    Projectile                                projectile;
-    std::unique_ptr<History>                  history;
+    const Parameters::Shared &parameters;
+    std::unique_ptr<ImpactModel> model;
+    MPI_Comm communicator;
+    bool is_root;
+    ConditionalOStream out;
+    Projectile projectile;
+    std::unique_ptr<History> history;
     std::vector<std::pair<double, std::string>> snapshots;
-    double                                    initial_energy = 0.;
+    double initial_energy = 0.;
   };
 
 
   HistoryRow
-  ImpactSimulation::Implementation::make_row(const double        time,
+  ImpactSimulation::Implementation::make_row(const double time,
                                              const unsigned long step,
-                                             const double        dt,
-                                             const double        force) const
+                                             const double dt,
+                                             const double force) const
   {
     HistoryRow row;
     row.time                      = time;
@@ -142,14 +141,14 @@ namespace YarnImpact
     row.projectile_kinetic_energy = projectile.kinetic_energy();
     row.external_work             = projectile.external_work();
     row.model                     = model->observables();
-    const auto  &m                = row.model;
-    const double total = m.kinetic_energy + m.elastic_energy +
+    const auto &m                 = row.model;
+    const double total            = m.kinetic_energy + m.elastic_energy +
                          m.contact_energy + row.projectile_kinetic_energy;
     row.energy_error =
-      (initial_energy > 0. ?
-         (total + m.dissipated_energy - row.external_work - initial_energy) /
-           initial_energy :
-         0.);
+      (initial_energy > 0.
+         ? (total + m.dissipated_energy - row.external_work - initial_energy) /
+             initial_energy
+         : 0.);
     return row;
   }
 
@@ -159,9 +158,7 @@ namespace YarnImpact
   {
     const std::string &dir = parameters.output.directory;
     snapshots.emplace_back(time * 1e6,
-                           model->write_snapshot(dir,
-                                                 snapshots.size(),
-                                                 time));
+                           model->write_snapshot(dir, snapshots.size(), time));
     if (is_root)
       {
         std::ofstream pvd(dir + "/" + model->name() + ".pvd");
@@ -173,12 +170,12 @@ namespace YarnImpact
   RunSummary
   ImpactSimulation::Implementation::run()
   {
-    const auto   &p       = parameters;
-    const bool    verbose = p.output.verbosity == Parameters::Verbosity::normal;
-    const bool    testing = p.output.verbosity == Parameters::Verbosity::test;
-    Timer         wall_timer;
+    const auto &p      = parameters;
+    const bool verbose = p.output.verbosity == Parameters::Verbosity::normal;
+    const bool testing = p.output.verbosity == Parameters::Verbosity::test;
+    Timer wall_timer;
     std::ostringstream timer_sink;
-    TimerOutput   timer(communicator,
+    TimerOutput timer(communicator,
                       verbose ? out.get_stream() : timer_sink,
                       verbose ? TimerOutput::summary : TimerOutput::never,
                       TimerOutput::wall_times);
@@ -186,18 +183,19 @@ namespace YarnImpact
     {
       TimerOutput::Scope scope(timer, "set-up");
       model->setup(projectile, testing ? timer_sink : out.get_stream());
+      projectile.place_on(model->yarn_top());
     }
     const std::string name = model->name();
     history = std::make_unique<History>(p.output.directory, name, is_root);
 
-    const auto   axial = model->axial_properties();
-    const auto   smith = Analysis::smith_solution(axial,
+    const auto axial = model->axial_properties();
+    const auto smith = Analysis::smith_solution(axial,
                                                 p.projectile.initial_velocity,
                                                 p.projectile.mass);
-    double       dt    = p.time.safety_factor * model->stable_time_step();
+    double dt        = p.time.safety_factor * model->stable_time_step();
     if (!testing)
-      out << std::setprecision(5) << "[" << name
-          << "] yarn mass " << model->mass() * 1e6 << " mg, mass per length "
+      out << std::setprecision(5) << "[" << name << "] yarn mass "
+          << model->mass() * 1e6 << " mg, mass per length "
           << axial.mass_per_length() * 1e6 << " mg/m, EA "
           << axial.axial_stiffness() << " N, bar wave speed "
           << std::sqrt(axial.modulus / axial.density) << " m/s\n"
@@ -205,14 +203,14 @@ namespace YarnImpact
           << dt / p.time.safety_factor * 1e9 << " ns, used " << dt * 1e9
           << " ns (safety factor " << p.time.safety_factor << ")\n"
           << "[" << name << "] Smith theory at "
-          << p.projectile.initial_velocity << " m/s: strain "
-          << smith.strain << ", transverse wave " << smith.lab_speed
-          << " m/s, deceleration " << smith.deceleration << " m/s^2\n";
+          << p.projectile.initial_velocity << " m/s: strain " << smith.strain
+          << ", transverse wave " << smith.lab_speed << " m/s, deceleration "
+          << smith.deceleration << " m/s^2\n";
 
-    double        force = model->compute_forces(projectile, dt);
-    double        t     = 0.;
-    unsigned long step  = 0;
-    initial_energy      = 0.;
+    double force       = model->compute_forces(projectile, dt);
+    double t           = 0.;
+    unsigned long step = 0;
+    initial_energy     = 0.;
     {
       const auto r0  = make_row(0., 0, dt, force);
       initial_energy = r0.projectile_kinetic_energy + r0.model.kinetic_energy +
@@ -227,10 +225,10 @@ namespace YarnImpact
       }
 
     RunSummary summary;
-    summary.model_name = name;
-    double next_history  = p.output.history_interval;
-    double next_snapshot = p.output.snapshot_interval;
-    double last_progress = 0.;
+    summary.model_name    = name;
+    double next_history   = p.output.history_interval;
+    double next_snapshot  = p.output.snapshot_interval;
+    double last_progress  = 0.;
     const double end_time = p.time.end_time;
     const double eps_t    = 1e-9 * end_time;
 
@@ -318,10 +316,15 @@ namespace YarnImpact
                 while (next_snapshot <= t + eps_t)
                   next_snapshot += p.output.snapshot_interval;
               }
-            if (model->yarn_cut_through())
+            if (summary.cut_through_time < 0. && m.n_failed > 0 &&
+                model->yarn_cut_through())
               {
-                stop_reason = "the yarn is cut through";
-                break;
+                summary.cut_through_time = t;
+                if (p.time.stop_at_cut_through)
+                  {
+                    stop_reason = "the yarn is cut through";
+                    break;
+                  }
               }
             if (!projectile.prescribed() && projectile.impact_speed() <= 0.)
               {
@@ -337,10 +340,11 @@ namespace YarnImpact
             const double eta = last_progress * (end_time - t) / t;
             out << "[" << name << "] t = " << std::fixed << std::setprecision(3)
                 << t * 1e6 << " us, step " << step << ", dt "
-                << std::setprecision(3) << h * 1e9 << " ns, v = "
-                << std::setprecision(3) << projectile.impact_speed()
-                << " m/s, ETA " << std::setprecision(1) << eta << " s"
-                << std::defaultfloat << std::endl;
+                << std::setprecision(3) << h * 1e9
+                << " ns, v = " << std::setprecision(3)
+                << projectile.impact_speed() << " m/s, ETA "
+                << std::setprecision(1) << eta << " s" << std::defaultfloat
+                << std::endl;
           }
       }
 
@@ -349,10 +353,23 @@ namespace YarnImpact
     summary.wall_time      = wall_timer.wall_time();
     summary.final_velocity = projectile.impact_speed();
 
+    const auto &rows = history->rows();
+    for (unsigned int k = 1; k <= 10; ++k)
+      {
+        const double ts = 0.1 * k * t;
+        auto it         = std::lower_bound(rows.begin(),
+                                   rows.end(),
+                                   ts - eps_t,
+                                   [](const HistoryRow &r, const double x) {
+                                     return r.time < x;
+                                   });
+        if (it != rows.end())
+          summary.samples.push_back(*it);
+      }
+
     // Smith-theory quantities in the verification window.
-    const auto  &rows = history->rows();
-    const double t0   = p.verification.window_start;
-    const double t1   = std::min(p.verification.window_end, t);
+    const double t0 = p.verification.window_start;
+    const double t1 = std::min(p.verification.window_end, t);
     if (t1 > t0)
       {
         const auto v = [](const HistoryRow &r) {
@@ -368,8 +385,8 @@ namespace YarnImpact
           fitted_rate(rows, t0, t1, [](const HistoryRow &r) {
             return r.model.fronts.transverse;
           });
-        double       sum = 0.;
-        unsigned int n   = 0;
+        double sum     = 0.;
+        unsigned int n = 0;
         for (const auto &r : rows)
           if (r.time >= t0 && r.time <= t1)
             {
@@ -381,7 +398,7 @@ namespace YarnImpact
 
     const auto &v    = p.verification;
     const double tol = v.tolerance;
-    bool        &ok  = summary.checks_passed;
+    bool &ok         = summary.checks_passed;
     if (v.check_deceleration)
       summary.checks.push_back(format_check("mean deceleration",
                                             summary.mean_deceleration,
@@ -416,11 +433,11 @@ namespace YarnImpact
                                             ok));
     if (v.check_energy)
       {
-        const bool         e_ok = summary.max_energy_error <= v.energy_tolerance;
+        const bool e_ok = summary.max_energy_error <= v.energy_tolerance;
         std::ostringstream s;
         s << std::fixed << std::setprecision(4)
-          << "energy balance: largest error "
-          << 100. * summary.max_energy_error << " % of the initial energy "
+          << "energy balance: largest error " << 100. * summary.max_energy_error
+          << " % of the initial energy "
           << "(tolerance " << 100. * v.energy_tolerance << " %) "
           << (e_ok ? "PASSED" : "FAILED");
         summary.checks.push_back(s.str());
@@ -433,10 +450,10 @@ namespace YarnImpact
   }
 
 
-  ImpactSimulation::ImpactSimulation(const Parameters::Shared     &parameters,
+  ImpactSimulation::ImpactSimulation(const Parameters::Shared &parameters,
                                      std::unique_ptr<ImpactModel> model,
-                                     const MPI_Comm                communicator,
-                                     std::ostream                 &out)
+                                     const MPI_Comm communicator,
+                                     std::ostream &out)
     : impl(std::make_unique<Implementation>(parameters,
                                             std::move(model),
                                             communicator,
@@ -468,8 +485,8 @@ namespace YarnImpact
   print_summary(const RunSummary &s, std::ostream &out)
   {
     out << std::fixed << "Summary (" << s.model_name << " model)\n"
-        << std::setprecision(4) << "  end time:                   "
-        << s.end_time * 1e6 << " us\n"
+        << std::setprecision(4)
+        << "  end time:                   " << s.end_time * 1e6 << " us\n"
         << "  final projectile velocity:  " << s.final_velocity << " m/s\n"
         << "  largest energy error:       " << 100. * s.max_energy_error
         << " % of the initial energy\n"
@@ -478,13 +495,26 @@ namespace YarnImpact
       out << s.first_failure_time * 1e6 << " us\n";
     else
       out << "none\n";
+    out << "  yarn cut through:           ";
+    if (s.cut_through_time >= 0.)
+      out << s.cut_through_time * 1e6 << " us\n";
+    else
+      out << "no\n";
     out << "  window: mean deceleration   " << s.mean_deceleration * 1e-5
         << " 1e5 m/s^2\n"
-        << "  window: plateau strain      " << s.plateau_strain * 1e2
-        << " %\n"
-        << "  window: longitudinal speed  " << s.longitudinal_speed
-        << " m/s\n"
+        << "  window: plateau strain      " << s.plateau_strain * 1e2 << " %\n"
+        << "  window: longitudinal speed  " << s.longitudinal_speed << " m/s\n"
         << "  window: transverse speed    " << s.transverse_speed << " m/s\n";
+    out << "  history samples: t [us], v [m/s], force [N], max strain [%], "
+           "energy error [%], transverse front [mm], spreading front [mm]\n";
+    for (const auto &r : s.samples)
+      out << "   " << std::setprecision(3) << std::setw(8) << r.time * 1e6
+          << std::setprecision(4) << std::setw(10) << r.projectile_velocity
+          << std::setprecision(3) << std::setw(9) << r.contact_force
+          << std::setprecision(4) << std::setw(8) << 100. * r.model.max_strain
+          << std::setw(9) << 100. * r.energy_error << std::setprecision(3)
+          << std::setw(8) << 1e3 * r.model.fronts.transverse << std::setw(8)
+          << 1e3 * r.model.fronts.spreading << '\n';
     for (const auto &c : s.checks)
       out << "  check " << c << '\n';
     out << std::defaultfloat;

@@ -10,7 +10,7 @@ namespace YarnImpact
   namespace Parameters
   {
     void
-    require(const bool         condition,
+    require(const bool condition,
             const std::string &name,
             const std::string &message)
     {
@@ -20,8 +20,8 @@ namespace YarnImpact
 
     double
     get_positive_double(dealii::ParameterHandler &prm,
-                        const std::string        &section,
-                        const std::string        &entry)
+                        const std::string &section,
+                        const std::string &entry)
     {
       const double value = prm.get_double(entry);
       std::ostringstream got;
@@ -34,8 +34,8 @@ namespace YarnImpact
 
     unsigned int
     get_positive_integer(dealii::ParameterHandler &prm,
-                         const std::string        &section,
-                         const std::string        &entry)
+                         const std::string &section,
+                         const std::string &entry)
     {
       const long value = prm.get_integer(entry);
       require(value > 0,

@@ -1,5 +1,5 @@
-#include <yarn_impact/core/parameters.h>
 #include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/core/parameters.h>
 
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
@@ -52,13 +52,13 @@ namespace YarnImpact
     General::parse_parameters(ParameterHandler &prm)
     {
       const std::string m = prm.get("Model");
-      model = (m == "fe" ? ModelType::fe :
-               m == "dem" ? ModelType::dem :
-                            ModelType::both);
+      model               = (m == "fe"    ? ModelType::fe
+                             : m == "dem" ? ModelType::dem
+                                          : ModelType::both);
       const std::string s = prm.get("Symmetry");
-      symmetry = (s == "none" ? Symmetry::none :
-                  s == "half" ? Symmetry::half :
-                                Symmetry::quarter);
+      symmetry            = (s == "none"   ? Symmetry::none
+                             : s == "half" ? Symmetry::half
+                                           : Symmetry::quarter);
     }
 
 
@@ -126,8 +126,9 @@ namespace YarnImpact
     Yarn::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Yarn");
-      length              = get_positive_double(prm, "Yarn", "Length");
-      thickness_semi_axis = get_positive_double(prm, "Yarn", "Thickness semi-axis");
+      length = get_positive_double(prm, "Yarn", "Length");
+      thickness_semi_axis =
+        get_positive_double(prm, "Yarn", "Thickness semi-axis");
       width_semi_axis = get_positive_double(prm, "Yarn", "Width semi-axis");
       n_fibres        = get_positive_integer(prm, "Yarn", "Number of fibres");
       fibre_diameter  = get_positive_double(prm, "Yarn", "Fibre diameter");
@@ -152,11 +153,12 @@ namespace YarnImpact
                         Patterns::Double(),
                         "Diameter of the projectile; its axis is z, across "
                         "the yarn's width [m].");
-      prm.declare_entry("Initial velocity",
-                        "120",
-                        Patterns::Double(),
-                        "Impact speed; the projectile starts touching the top of the "
-                        "yarn at mid-span and moves towards -y [m/s].");
+      prm.declare_entry(
+        "Initial velocity",
+        "120",
+        Patterns::Double(),
+        "Impact speed; the projectile starts touching the top of the "
+        "yarn at mid-span and moves towards -y [m/s].");
       prm.declare_entry(
         "Motion",
         "free",
@@ -172,13 +174,13 @@ namespace YarnImpact
     Projectile::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Projectile");
-      mass             = get_positive_double(prm, "Projectile", "Mass");
-      diameter         = get_positive_double(prm, "Projectile", "Diameter");
+      mass     = get_positive_double(prm, "Projectile", "Mass");
+      diameter = get_positive_double(prm, "Projectile", "Diameter");
       initial_velocity =
         get_positive_double(prm, "Projectile", "Initial velocity");
-      motion           = (prm.get("Motion") == "free" ?
-                  ProjectileMotion::free :
-                  ProjectileMotion::prescribed_velocity);
+      motion =
+        (prm.get("Motion") == "free" ? ProjectileMotion::free
+                                     : ProjectileMotion::prescribed_velocity);
       prm.leave_subsection();
     }
 
@@ -207,6 +209,13 @@ namespace YarnImpact
         Patterns::Double(),
         "The run stops with an error when the energy balance error exceeds "
         "this fraction of the initial energy (a numerical blow-up) [-].");
+      prm.declare_entry(
+        "Stop when cut through",
+        "false",
+        Patterns::Bool(),
+        "Whether the run stops as soon as the yarn is cut through (a whole "
+        "section failed); otherwise it goes on to End time with the "
+        "projectile flying through, and the cut time is reported.");
       prm.leave_subsection();
     }
 
@@ -224,6 +233,7 @@ namespace YarnImpact
         get_positive_integer(prm, "Time", "Time step update interval");
       energy_error_limit =
         get_positive_double(prm, "Time", "Energy error limit");
+      stop_at_cut_through = prm.get_bool("Stop when cut through");
       prm.leave_subsection();
     }
 
@@ -267,21 +277,18 @@ namespace YarnImpact
     {
       prm.enter_subsection("Output");
       directory = prm.get("Directory");
-      require(!directory.empty(),
-              "Output/Directory",
-              "must not be empty");
+      require(!directory.empty(), "Output/Directory", "must not be empty");
       snapshot_interval = prm.get_double("Snapshot interval");
       require(snapshot_interval >= 0.,
               "Output/Snapshot interval",
               "must not be negative");
-      history_interval =
-        get_positive_double(prm, "Output", "History interval");
+      history_interval = get_positive_double(prm, "Output", "History interval");
       progress_interval =
         get_positive_double(prm, "Output", "Progress interval");
       const std::string v = prm.get("Verbosity");
-      verbosity           = (v == "normal" ? Verbosity::normal :
-                             v == "quiet"  ? Verbosity::quiet :
-                                             Verbosity::test);
+      verbosity           = (v == "normal"  ? Verbosity::normal
+                             : v == "quiet" ? Verbosity::quiet
+                                            : Verbosity::test);
       prm.leave_subsection();
     }
 
@@ -378,7 +385,7 @@ namespace YarnImpact
               "Verification/Window end",
               "must be later than Window start");
       const std::string checks = prm.get("Checks");
-      const auto        has    = [&checks](const std::string &name) {
+      const auto has           = [&checks](const std::string &name) {
         for (const auto &item : Utilities::split_string_list(checks))
           if (item == name)
             return true;

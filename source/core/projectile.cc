@@ -3,7 +3,7 @@
 namespace YarnImpact
 {
   Projectile::Projectile(const Parameters::Projectile &parameters,
-                         const double                  yarn_thickness_semi_axis)
+                         const double yarn_thickness_semi_axis)
     : m(parameters.mass)
     , r(0.5 * parameters.diameter)
     , y0(yarn_thickness_semi_axis + 0.5 * parameters.diameter)

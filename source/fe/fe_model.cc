@@ -31,8 +31,8 @@ namespace YarnImpact
 
     namespace
     {
-      constexpr unsigned int n_nodes = 8;  // vertices of a hexahedron
-      constexpr unsigned int n_q     = 8;  // 2x2x2 Gauss points
+      constexpr unsigned int n_nodes     = 8; // vertices of a hexahedron
+      constexpr unsigned int n_q         = 8; // 2x2x2 Gauss points
       constexpr unsigned int n_cell_dofs = 3 * n_nodes;
       constexpr unsigned int grad_size   = n_q * n_nodes * 3;
 
@@ -80,9 +80,9 @@ namespace YarnImpact
       using VectorType = LinearAlgebra::distributed::Vector<double>;
 
       YarnModel(const YarnImpact::Parameters::Shared &shared,
-                const Parameters                     &parameters,
-                const Law                            &law,
-                const MPI_Comm                        communicator);
+                const Parameters &parameters,
+                const Law &law,
+                const MPI_Comm communicator);
 
       std::string
       name() const override
@@ -92,6 +92,12 @@ namespace YarnImpact
 
       void
       setup(const Projectile &projectile, std::ostream &out) override;
+
+      double
+      yarn_top() const override
+      {
+        return top;
+      }
 
       double
       stable_time_step() const override;
@@ -123,7 +129,7 @@ namespace YarnImpact
       std::string
       write_snapshot(const std::string &directory,
                      const unsigned int index,
-                     const double       time) const override;
+                     const double time) const override;
 
       unsigned long
       n_elements() const override
@@ -137,49 +143,52 @@ namespace YarnImpact
       vertex_positions(const unsigned int c, double (&p)[n_nodes][3]) const;
 
       const YarnImpact::Parameters::Shared &shared;
-      const Parameters                      parameters;
-      const Law                             law;
-      const MPI_Comm                        communicator;
-      const double                          symmetry;
+      const Parameters parameters;
+      const Law law;
+      const MPI_Comm communicator;
+      const double symmetry;
 
       parallel::distributed::Triangulation<3> tria;
-      FESystem<3>                             fe;
-      DoFHandler<3>                           dof_handler;
+      FESystem<3> fe;
+      DoFHandler<3> dof_handler;
 
       mutable VectorType displacement;
       mutable VectorType velocity;
-      VectorType         force;
-      VectorType         lumped_mass;
-      VectorType         inverse_mass;
+      VectorType force;
+      VectorType lumped_mass;
+      VectorType inverse_mass;
       /** Reference coordinate of each local dof (its own component). */
       std::vector<double> reference_coordinate;
 
       // Owned cells: local dof indices, shape gradients, JxW.
-      std::vector<unsigned int>       cell_dofs;
-      std::vector<double>             cell_grads;
-      std::vector<double>             cell_JxW;
-      std::vector<unsigned int>       cell_index;   // active_cell_index
-      std::vector<unsigned char>      cell_axis;    // local axis along x
-      std::vector<unsigned int>       cell_layer;   // axial cell layer
-      std::vector<unsigned char>      cell_failed;
-      std::vector<double>             cell_strain;  // max fibre strain
-      std::vector<double>             cell_compaction; // max |I_tc|
+      std::vector<unsigned int> cell_dofs;
+      std::vector<double> cell_grads;
+      std::vector<double> cell_JxW;
+      std::vector<unsigned int> cell_index; // active_cell_index
+      std::vector<unsigned char> cell_axis; // local axis along x
+      std::vector<unsigned int> cell_layer; // axial cell layer
+      std::vector<unsigned char> cell_failed;
+      std::vector<double> cell_strain;      // max fibre strain
+      std::vector<double> cell_mean_strain; // mean fibre strain
+      std::vector<double> cell_volume;
+      std::vector<double> cell_compaction; // max |I_tc|
 
       // Owned nodes: local indices of their x, y, z dofs and their station.
       std::vector<std::array<unsigned int, 3>> nodes;
-      std::vector<unsigned int>                node_station;
+      std::vector<unsigned int> node_station;
       // Owned contact nodes: index into nodes, reference area, mass.
       std::vector<unsigned int> contact_nodes;
-      std::vector<double>       contact_area;
-      std::vector<double>       contact_mass;
+      std::vector<double> contact_area;
+      std::vector<double> contact_mass;
 
-      unsigned int        n_stations     = 0;
-      unsigned int        n_layers       = 0;
-      unsigned int        cells_per_layer = 0;
-      double              station_spacing = 0.;
+      unsigned int n_stations      = 0;
+      unsigned int n_layers        = 0;
+      unsigned int cells_per_layer = 0;
+      double station_spacing       = 0.;
       std::vector<double> initial_width;
-      double              total_mass     = 0.;
-      double              contact_time_step = 0.;
+      double total_mass        = 0.;
+      double top               = 0.;
+      double contact_time_step = 0.;
 
       // Energies of the owned part, from the last compute_forces().
       double elastic_energy = 0.;
@@ -191,14 +200,14 @@ namespace YarnImpact
     template <class Law>
     YarnModel<Law>::YarnModel(const YarnImpact::Parameters::Shared &shared,
                               const Parameters &parameters,
-                              const Law        &law,
-                              const MPI_Comm    communicator)
+                              const Law &law,
+                              const MPI_Comm communicator)
       : shared(shared)
       , parameters(parameters)
       , law(law)
       , communicator(communicator)
-      , symmetry(YarnImpact::Parameters::symmetry_factor(
-          shared.general.symmetry))
+      , symmetry(
+          YarnImpact::Parameters::symmetry_factor(shared.general.symmetry))
       , tria(communicator)
       , fe(FE_Q<3>(1), 3)
       , dof_handler(tria)
@@ -214,12 +223,13 @@ namespace YarnImpact
                        yarn,
                        shared.general.symmetry,
                        parameters.n_axial_cells,
-                       parameters.section_refinements);
+                       parameters.section_refinements,
+                       parameters.preserve_section_area);
       tria.refine_global(parameters.global_refinements);
       dof_handler.distribute_dofs(fe);
 
       const IndexSet owned = dof_handler.locally_owned_dofs();
-      IndexSet       relevant;
+      IndexSet relevant;
       DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
       for (VectorType *v :
            {&displacement, &velocity, &force, &lumped_mass, &inverse_mass})
@@ -229,26 +239,26 @@ namespace YarnImpact
         partitioner->locally_owned_size() + partitioner->n_ghost_indices();
       reference_coordinate.assign(n_local, 0.);
 
-      const bool   reduced = shared.general.symmetry !=
-                           YarnImpact::Parameters::Symmetry::none;
+      const bool reduced =
+        shared.general.symmetry != YarnImpact::Parameters::Symmetry::none;
       const unsigned int refinement_factor = 1u
                                              << parameters.global_refinements;
-      n_layers = (reduced ? parameters.n_axial_cells / 2 :
-                            parameters.n_axial_cells) *
-                 refinement_factor;
-      station_spacing = yarn.length / (parameters.n_axial_cells *
-                                       refinement_factor);
-      n_stations      = parameters.n_axial_cells / 2 * refinement_factor + 1;
-      cells_per_layer = tria.n_global_active_cells() / n_layers;
+      n_layers =
+        (reduced ? parameters.n_axial_cells / 2 : parameters.n_axial_cells) *
+        refinement_factor;
+      station_spacing =
+        yarn.length / (parameters.n_axial_cells * refinement_factor);
+      n_stations         = parameters.n_axial_cells / 2 * refinement_factor + 1;
+      cells_per_layer    = tria.n_global_active_cells() / n_layers;
       const double x_min = reduced ? 0. : -0.5 * yarn.length;
 
-      FE_Q<3>       scalar_fe(1);
-      QGauss<3>     quadrature(2);
-      FEValues<3>   fe_values(scalar_fe,
+      FE_Q<3> scalar_fe(1);
+      QGauss<3> quadrature(2);
+      FEValues<3> fe_values(scalar_fe,
                             quadrature,
                             update_values | update_gradients |
                               update_JxW_values);
-      QGauss<2>     face_quadrature(2);
+      QGauss<2> face_quadrature(2);
       FEFaceValues<3> fe_face_values(scalar_fe,
                                      face_quadrature,
                                      update_values | update_JxW_values);
@@ -266,12 +276,12 @@ namespace YarnImpact
             {
               double node_mass = 0.;
               for (unsigned int q = 0; q < n_q; ++q)
-                node_mass += law.density * fe_values.shape_value(a, q) *
-                             fe_values.JxW(q);
+                node_mass +=
+                  law.density * fe_values.shape_value(a, q) * fe_values.JxW(q);
               for (unsigned int d = 0; d < 3; ++d)
                 {
-                  const auto local = partitioner->global_to_local(
-                    cell->vertex_dof_index(a, d));
+                  const auto local =
+                    partitioner->global_to_local(cell->vertex_dof_index(a, d));
                   cell_dofs.push_back(local);
                   reference_coordinate[local] = cell->vertex(a)[d];
                   lumped_mass.local_element(local) += node_mass;
@@ -289,7 +299,7 @@ namespace YarnImpact
           // The local axis along the fibre: the one whose opposite faces
           // are farthest apart in x.
           unsigned char axis = 0;
-          double        best = -1.;
+          double best        = -1.;
           for (unsigned int k = 0; k < 3; ++k)
             {
               double dx = 0.;
@@ -302,6 +312,10 @@ namespace YarnImpact
                 }
             }
           cell_axis.push_back(axis);
+          double volume = 0.;
+          for (unsigned int q = 0; q < n_q; ++q)
+            volume += fe_values.JxW(q);
+          cell_volume.push_back(volume);
           cell_layer.push_back(static_cast<unsigned int>(
             std::floor((0.5 * (x_lo + x_hi) - x_min) / station_spacing)));
 
@@ -309,8 +323,9 @@ namespace YarnImpact
             if (cell->face(f)->at_boundary() &&
                 cell->face(f)->boundary_id() == BoundaryIds::lateral)
               {
-                fe_face_values.reinit(
-                  typename Triangulation<3>::cell_iterator(cell), f);
+                fe_face_values.reinit(typename Triangulation<3>::cell_iterator(
+                                        cell),
+                                      f);
                 for (unsigned int a = 0; a < n_nodes; ++a)
                   {
                     double a_area = 0.;
@@ -327,6 +342,7 @@ namespace YarnImpact
       const unsigned int n_owned_cells = cell_index.size();
       cell_failed.assign(n_owned_cells, 0);
       cell_strain.assign(n_owned_cells, 0.);
+      cell_mean_strain.assign(n_owned_cells, 0.);
       cell_compaction.assign(n_owned_cells, 0.);
 
       // Owned nodes, their constraints and stations. The x dof of a vertex
@@ -339,7 +355,7 @@ namespace YarnImpact
             const unsigned int ix = cell_dofs[c * n_cell_dofs + 3 * a];
             if (seen[ix] || ix >= partitioner->locally_owned_size())
               continue;
-            seen[ix] = true;
+            seen[ix]                               = true;
             const std::array<unsigned int, 3> node = {
               ix,
               cell_dofs[c * n_cell_dofs + 3 * a + 1],
@@ -376,15 +392,19 @@ namespace YarnImpact
       for (const auto &node : nodes)
         local_mass += lumped_mass.local_element(node[0]);
       total_mass = symmetry * Utilities::MPI::sum(local_mass, communicator);
+      double local_top = -std::numeric_limits<double>::max();
+      for (const auto &node : nodes)
+        local_top = std::max(local_top, reference_coordinate[node[1]]);
+      top = Utilities::MPI::max(local_top, communicator);
 
       // Stable step of a contact node on its penalty spring.
       const double zeta = parameters.contact.damping_ratio;
-      double       dt_c = std::numeric_limits<double>::max();
+      double dt_c       = std::numeric_limits<double>::max();
       for (unsigned int k = 0; k < contact_nodes.size(); ++k)
         dt_c = std::min(dt_c,
-                        2. * std::sqrt(contact_mass[k] /
-                                       (parameters.contact.penalty *
-                                        contact_area[k])));
+                        2. * std::sqrt(
+                               contact_mass[k] /
+                               (parameters.contact.penalty * contact_area[k])));
       contact_time_step = Utilities::MPI::min(dt_c, communicator) *
                           (std::sqrt(1. + zeta * zeta) - zeta);
 
@@ -432,7 +452,7 @@ namespace YarnImpact
       // (distances between opposite face centroids): the yarn flattens
       // under the projectile and its cells thin.
       const double c_axial2 = law.axial_modulus() / law.density;
-      double       rate2    = 0.;
+      double rate2          = 0.;
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         {
           if (cell_failed[c])
@@ -440,9 +460,9 @@ namespace YarnImpact
           double p[n_nodes][3];
           vertex_positions(c, p);
           Invariants inv;
-          inv.compaction = cell_compaction[c];
+          inv.compaction        = cell_compaction[c];
           const double c_trans2 = law.transverse_modulus(inv) / law.density;
-          double       r2       = 0.;
+          double r2             = 0.;
           for (unsigned int k = 0; k < 3; ++k)
             {
               double d[3] = {0., 0., 0.};
@@ -454,7 +474,7 @@ namespace YarnImpact
             }
           rate2 = std::max(rate2, r2);
         }
-      rate2 = Utilities::MPI::max(rate2, communicator);
+      rate2                = Utilities::MPI::max(rate2, communicator);
       const double dt_bulk = 1. / std::sqrt(rate2);
       return 1. / std::sqrt(1. / (dt_bulk * dt_bulk) +
                             1. / (contact_time_step * contact_time_step));
@@ -464,38 +484,40 @@ namespace YarnImpact
     template <class Law>
     double
     YarnModel<Law>::compute_forces(const Projectile &projectile,
-                                   const double      dt)
+                                   const double dt)
     {
       displacement.update_ghost_values();
-      force = 0.;
-      const bool   failure       = shared.yarn.failure;
+      force                       = 0.;
+      const bool failure          = shared.yarn.failure;
       const double failure_strain = shared.yarn.failure_strain;
-      double       energy        = 0.;
+      double energy               = 0.;
 
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         {
           if (cell_failed[c])
             continue;
           const unsigned int *dofs = &cell_dofs[c * n_cell_dofs];
-          const double       *grad = &cell_grads[c * grad_size];
-          const double       *JxW  = &cell_JxW[c * n_q];
-          double              u[n_cell_dofs], f[n_cell_dofs];
+          const double *grad       = &cell_grads[c * grad_size];
+          const double *JxW        = &cell_JxW[c * n_q];
+          double u[n_cell_dofs], f[n_cell_dofs];
           for (unsigned int k = 0; k < n_cell_dofs; ++k)
             {
               u[k] = displacement.local_element(dofs[k]);
               f[k] = 0.;
             }
-          double max_elongation = -1., max_compaction = 0., cell_energy = 0.;
+          double max_elongation = -1., max_compaction = 0., cell_energy = 0.,
+                 sum_elongation = 0.;
           for (unsigned int q = 0; q < n_q; ++q)
             {
               const double *g = grad + q * n_nodes * 3;
-              Matrix3       F, P;
+              Matrix3 F, P;
               deformation_gradient(u, g, F);
-              Invariants   inv;
+              Invariants inv;
               const double W = law.stress(F, P, inv);
               max_elongation = std::max(max_elongation, inv.elongation);
-              max_compaction = std::max(max_compaction,
-                                        std::abs(inv.compaction));
+              sum_elongation += inv.elongation;
+              max_compaction =
+                std::max(max_compaction, std::abs(inv.compaction));
               cell_energy += W * JxW[q];
               for (unsigned int a = 0; a < n_nodes; ++a)
                 {
@@ -507,8 +529,9 @@ namespace YarnImpact
                       P[3 * i] * g0 + P[3 * i + 1] * g1 + P[3 * i + 2] * g2;
                 }
             }
-          cell_strain[c]     = std::expm1(max_elongation);
-          cell_compaction[c] = max_compaction;
+          cell_strain[c]      = std::expm1(max_elongation);
+          cell_mean_strain[c] = std::expm1(sum_elongation / n_q);
+          cell_compaction[c]  = max_compaction;
           if (failure && cell_strain[c] > failure_strain)
             {
               // The cell breaks: it carries no force from now on, and its
@@ -525,18 +548,18 @@ namespace YarnImpact
       elastic_energy = energy;
 
       // Penalty contact of the surface nodes with the rigid cylinder.
-      const auto  &contact = parameters.contact;
-      const double R       = projectile.radius();
-      const double yc      = projectile.axis_position();
-      const double vp      = projectile.velocity();
-      double       reaction = 0., penalty_energy = 0.;
+      const auto &contact = parameters.contact;
+      const double R      = projectile.radius();
+      const double yc     = projectile.axis_position();
+      const double vp     = projectile.velocity();
+      double reaction = 0., penalty_energy = 0.;
       for (unsigned int k = 0; k < contact_nodes.size(); ++k)
         {
-          const auto  &node = nodes[contact_nodes[k]];
-          const double px   = reference_coordinate[node[0]] +
-                            displacement.local_element(node[0]);
-          const double py = reference_coordinate[node[1]] +
-                            displacement.local_element(node[1]);
+          const auto &node = nodes[contact_nodes[k]];
+          const double px =
+            reference_coordinate[node[0]] + displacement.local_element(node[0]);
+          const double py =
+            reference_coordinate[node[1]] + displacement.local_element(node[1]);
           const double dx = px, dy = py - yc;
           const double dist2 = dx * dx + dy * dy;
           if (dist2 >= R * R)
@@ -550,7 +573,7 @@ namespace YarnImpact
           const double rvy = velocity.local_element(node[1]) - vp;
           const double rvz = velocity.local_element(node[2]);
           const double vn  = rvx * nx + rvy * ny;
-          double       fn  = stiffness * gap;
+          double fn        = stiffness * gap;
           if (contact.damping_ratio > 0.)
             {
               const double c = 2. * contact.damping_ratio *
@@ -565,13 +588,17 @@ namespace YarnImpact
               const double vt[3] = {rvx - vn * nx, rvy - vn * ny, rvz};
               const double speed =
                 std::sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
+              // Coulomb's law, explicit: the friction force never exceeds
+              // the one that stops the slip within the step (m |v_t| / dt),
+              // so that sticking nodes do not chatter.
+              const double limit = contact_mass[k] * speed / dt;
               const double scale =
-                -contact.friction * fn /
-                std::max(speed, contact.regularisation_speed);
+                speed > 0. ? -std::min(contact.friction * fn, limit) / speed
+                           : 0.;
               for (unsigned int d = 0; d < 3; ++d)
                 ft[d] = scale * vt[d];
-              dissipated += -(ft[0] * vt[0] + ft[1] * vt[1] + ft[2] * vt[2]) *
-                            dt;
+              dissipated +=
+                -(ft[0] * vt[0] + ft[1] * vt[1] + ft[2] * vt[2]) * dt;
             }
           force.local_element(node[0]) += fn * nx + ft[0];
           force.local_element(node[1]) += fn * ny + ft[1];
@@ -588,8 +615,8 @@ namespace YarnImpact
     void
     YarnModel<Law>::kick(const double dt)
     {
-      const unsigned int n = velocity.locally_owned_size();
-      double *const       v = velocity.begin();
+      const unsigned int n  = velocity.locally_owned_size();
+      double *const v       = velocity.begin();
       const double *const f = force.begin();
       const double *const m = inverse_mass.begin();
       for (unsigned int i = 0; i < n; ++i)
@@ -602,8 +629,8 @@ namespace YarnImpact
     YarnModel<Law>::drift(const double dt)
     {
       displacement.zero_out_ghost_values();
-      const unsigned int  n = displacement.locally_owned_size();
-      double *const       u = displacement.begin();
+      const unsigned int n  = displacement.locally_owned_size();
+      double *const u       = displacement.begin();
       const double *const v = velocity.begin();
       for (unsigned int i = 0; i < n; ++i)
         u[i] += dt * v[i];
@@ -615,9 +642,9 @@ namespace YarnImpact
     YarnModel<Law>::observables() const
     {
       Observables o;
-      double      kinetic = 0.;
+      double kinetic = 0.;
       {
-        const unsigned int  n = velocity.locally_owned_size();
+        const unsigned int n  = velocity.locally_owned_size();
         const double *const v = velocity.begin();
         const double *const m = lumped_mass.begin();
         for (unsigned int i = 0; i < n; ++i)
@@ -633,8 +660,8 @@ namespace YarnImpact
       o.contact_energy    = symmetry * global[2];
       o.dissipated_energy = symmetry * global[3];
 
-      double       max_strain = 0.;
-      unsigned int n_failed   = 0;
+      double max_strain     = 0.;
+      unsigned int n_failed = 0;
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         if (cell_failed[c])
           ++n_failed;
@@ -645,9 +672,13 @@ namespace YarnImpact
                    Utilities::MPI::sum(n_failed, communicator);
 
       // Station profile: maxima in one array, sums in another.
-      const unsigned int  n = n_stations;
-      std::vector<double> maxima(4 * n, -std::numeric_limits<double>::max());
-      std::vector<double> sums(2 * n, 0.);
+      const unsigned int n = n_stations;
+      // The station's strain is the volume average over the cells that
+      // touch its node layer: the yarn's strain T / EA. Fibres of one
+      // section are not coupled in longitudinal shear (G_LT = 0), so the
+      // largest strain in a section can be well above it.
+      std::vector<double> maxima(3 * n, -std::numeric_limits<double>::max());
+      std::vector<double> sums(4 * n, 0.);
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         {
           if (cell_failed[c])
@@ -656,23 +687,23 @@ namespace YarnImpact
           for (unsigned int a = 0; a < n_nodes; ++a)
             {
               const unsigned int s = static_cast<unsigned int>(std::round(
-                std::abs(reference_coordinate[dofs[3 * a]]) /
-                station_spacing));
-              maxima[s] = std::max(maxima[s], cell_strain[c]);
+                std::abs(reference_coordinate[dofs[3 * a]]) / station_spacing));
+              // Each cell has four vertices on each of its two layers.
+              sums[2 * n + s] += 0.25 * cell_volume[c] * cell_mean_strain[c];
+              sums[3 * n + s] += 0.25 * cell_volume[c];
             }
         }
       for (unsigned int k = 0; k < nodes.size(); ++k)
         {
-          const auto        &node = nodes[k];
-          const unsigned int s    = node_station[k];
-          const double       x    = reference_coordinate[node[0]] +
-                            displacement.local_element(node[0]);
-          const double z = reference_coordinate[node[2]] +
-                           displacement.local_element(node[2]);
-          maxima[n + s] =
-            std::max(maxima[n + s], -displacement.local_element(node[1]));
-          maxima[2 * n + s] = std::max(maxima[2 * n + s], z);
-          maxima[3 * n + s] = std::max(maxima[3 * n + s], -z);
+          const auto &node     = nodes[k];
+          const unsigned int s = node_station[k];
+          const double x =
+            reference_coordinate[node[0]] + displacement.local_element(node[0]);
+          const double z =
+            reference_coordinate[node[2]] + displacement.local_element(node[2]);
+          maxima[s] = std::max(maxima[s], -displacement.local_element(node[1]));
+          maxima[n + s]     = std::max(maxima[n + s], z);
+          maxima[2 * n + s] = std::max(maxima[2 * n + s], -z);
           sums[s] += std::abs(x);
           sums[n + s] += 1.;
         }
@@ -685,15 +716,17 @@ namespace YarnImpact
       profile.resize(n);
       for (unsigned int s = 0; s < n; ++s)
         {
-          profile.position[s]     = sums[s] / std::max(sums[n + s], 1.);
-          profile.axial_strain[s] = std::max(maxima[s], 0.);
-          profile.deflection[s]   = maxima[n + s];
-          profile.width[s] = quarter ? 2. * maxima[2 * n + s] :
-                                       maxima[2 * n + s] + maxima[3 * n + s];
+          profile.position[s] = sums[s] / std::max(sums[n + s], 1.);
+          profile.axial_strain[s] =
+            sums[2 * n + s] / std::max(sums[3 * n + s], 1e-300);
+          profile.deflection[s] = maxima[s];
+          profile.width[s] =
+            quarter ? 2. * maxima[n + s] : maxima[n + s] + maxima[2 * n + s];
         }
       if (initial_width[0] == 0.)
         const_cast<std::vector<double> &>(initial_width) = profile.width;
       profile.initial_width = initial_width;
+
       o.fronts = Analysis::measure_wave_fronts(profile, shared.wave_fronts);
       return o;
     }
@@ -704,7 +737,7 @@ namespace YarnImpact
     YarnModel<Law>::yarn_cut_through() const
     {
       std::vector<unsigned int> failed(n_layers, 0);
-      bool                      any = false;
+      bool any = false;
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         if (cell_failed[c])
           {
@@ -728,9 +761,9 @@ namespace YarnImpact
       AxialProperties a;
       a.density = law.density;
       // The discretised section (a polygon inside the ellipse).
-      a.area    = total_mass / (law.density * shared.yarn.length);
-      a.modulus = law.axial_modulus();
-      const Law copy = law;
+      a.area           = total_mass / (law.density * shared.yarn.length);
+      a.modulus        = law.axial_modulus();
+      const Law copy   = law;
       a.nominal_stress = [copy](const double e) {
         return copy.uniaxial_nominal_stress(e);
       };
@@ -746,42 +779,40 @@ namespace YarnImpact
     {
       displacement.update_ghost_values();
       velocity.update_ghost_values();
-      const unsigned int n_cells = tria.n_active_cells();
-      const char *names[] = {"I_e",
-                             "I_tc",
-                             "I_td",
-                             "longitudinal_strain",
-                             "cauchy_xx",
-                             "cauchy_yy",
-                             "cauchy_zz",
-                             "cauchy_xy",
-                             "cauchy_xz",
-                             "cauchy_yz",
-                             "failed",
-                             "mpi_rank"};
+      const unsigned int n_cells  = tria.n_active_cells();
+      const char *names[]         = {"I_e",
+                                     "I_tc",
+                                     "I_td",
+                                     "longitudinal_strain",
+                                     "cauchy_xx",
+                                     "cauchy_yy",
+                                     "cauchy_zz",
+                                     "cauchy_xy",
+                                     "cauchy_xz",
+                                     "cauchy_yz",
+                                     "failed",
+                                     "mpi_rank"};
       const unsigned int n_fields = sizeof(names) / sizeof(names[0]);
       std::vector<Vector<float>> fields(n_fields, Vector<float>(n_cells));
       const float rank = Utilities::MPI::this_mpi_process(communicator);
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         {
-          const unsigned int  id   = cell_index[c];
+          const unsigned int id    = cell_index[c];
           const unsigned int *dofs = &cell_dofs[c * n_cell_dofs];
-          double              u[n_cell_dofs];
+          double u[n_cell_dofs];
           for (unsigned int k = 0; k < n_cell_dofs; ++k)
             u[k] = displacement.local_element(dofs[k]);
           double sums[10] = {};
           for (unsigned int q = 0; q < n_q; ++q)
             {
               Matrix3 F, P;
-              deformation_gradient(u,
-                                   &cell_grads[c * grad_size + q * 24],
-                                   F);
+              deformation_gradient(u, &cell_grads[c * grad_size + q * 24], F);
               Invariants inv;
               law.stress(F, P, inv);
               inv = charmetant_invariants(F);
               // Cauchy stress sigma = P F^T / J.
               const double J = determinant(F);
-              double       sigma[9];
+              double sigma[9];
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)
                   sigma[3 * i + j] =
@@ -813,7 +844,8 @@ namespace YarnImpact
 
       DataOut<3> data_out;
       data_out.attach_dof_handler(dof_handler);
-      const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      const std::vector<
+        DataComponentInterpretation::DataComponentInterpretation>
         vector_field(3,
                      DataComponentInterpretation::component_is_part_of_vector);
       data_out.add_data_vector(displacement,
@@ -831,14 +863,18 @@ namespace YarnImpact
       // The geometry written is the deformed one.
       MappingQEulerian<3, VectorType> mapping(1, dof_handler, displacement);
       data_out.build_patches(mapping);
-      return data_out.write_vtu_with_pvtu_record(
-        directory + "/", "fe", index, communicator, 4, 0);
+      return data_out.write_vtu_with_pvtu_record(directory + "/",
+                                                 "fe",
+                                                 index,
+                                                 communicator,
+                                                 4,
+                                                 0);
     }
 
 
     void
     validate(const YarnImpact::Parameters::Shared &shared,
-             const Parameters                     &parameters)
+             const Parameters &parameters)
     {
       using YarnImpact::Parameters::require;
       require(parameters.n_axial_cells % 2 == 0,
@@ -861,15 +897,15 @@ namespace YarnImpact
 
     std::unique_ptr<ImpactModel>
     create_model(const YarnImpact::Parameters::Shared &shared,
-                 const Parameters                     &parameters,
-                 const MPI_Comm                        communicator)
+                 const Parameters &parameters,
+                 const MPI_Comm communicator)
     {
       validate(shared, parameters);
-      const double density =
-        parameters.density_from_fibres ?
-          shared.yarn.fibre_density * shared.yarn.fibre_area() /
-            shared.yarn.section_area() :
-          parameters.density;
+      const double density = parameters.density_from_fibres
+                               ? shared.yarn.fibre_density *
+                                   shared.yarn.fibre_area() /
+                                   shared.yarn.section_area()
+                               : parameters.density;
       if (parameters.law == LawType::charmetant)
         return std::make_unique<YarnModel<CharmetantLaw>>(
           shared,

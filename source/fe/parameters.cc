@@ -46,6 +46,15 @@ namespace YarnImpact
                         Patterns::Integer(0, 6),
                         "Number of refinements of the 12-cell elliptical "
                         "section (each multiplies its cells by 4) [-].");
+      prm.declare_entry(
+        "Preserve section area",
+        "true",
+        Patterns::Bool(),
+        "When true, the polygonal section mesh (its boundary vertices on "
+        "the ellipse) is scaled about its centre so that its area equals "
+        "the ellipse's: the 12-cell section would otherwise have 10 % less "
+        "area, mass per length and axial stiffness than the ellipse. The "
+        "projectile always starts touching the top of the meshed yarn.");
       prm.declare_entry("Global refinements",
                         "0",
                         Patterns::Integer(0, 4),
@@ -118,11 +127,6 @@ namespace YarnImpact
                         "Viscous damping of the contact as a fraction of the "
                         "critical damping of a surface node on its penalty "
                         "spring [-].");
-      prm.declare_entry("Friction regularisation speed",
-                        "0.01",
-                        Patterns::Double(),
-                        "Sliding speed below which the Coulomb friction force "
-                        "grows linearly with the speed [m/s].");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -131,17 +135,18 @@ namespace YarnImpact
     Parameters::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("FE");
-      law = (prm.get("Constitutive law") == "Charmetant" ?
-               LawType::charmetant :
-               LawType::linear_transversely_isotropic);
+      law                 = (prm.get("Constitutive law") == "Charmetant"
+                               ? LawType::charmetant
+                               : LawType::linear_transversely_isotropic);
       density             = get_positive_double(prm, "FE", "Density");
       density_from_fibres = prm.get_bool("Density from fibres");
       n_axial_cells =
         YarnImpact::Parameters::get_positive_integer(prm,
                                                      "FE",
                                                      "Cells along the axis");
-      section_refinements = prm.get_integer("Section refinements");
-      global_refinements  = prm.get_integer("Global refinements");
+      section_refinements   = prm.get_integer("Section refinements");
+      global_refinements    = prm.get_integer("Global refinements");
+      preserve_section_area = prm.get_bool("Preserve section area");
 
       prm.enter_subsection("Charmetant");
       charmetant.k_e  = get_positive_double(prm, "FE/Charmetant", "k_e");
@@ -156,11 +161,11 @@ namespace YarnImpact
 
       prm.enter_subsection("Linear transversely isotropic");
       const std::string lin = "FE/Linear transversely isotropic";
-      linear.E_L   = get_positive_double(prm, lin, "E_L");
-      linear.E_T   = get_positive_double(prm, lin, "E_T");
-      linear.G_LT  = get_positive_double(prm, lin, "G_LT");
-      linear.nu_LT = prm.get_double("nu_LT");
-      linear.nu_TT = prm.get_double("nu_TT");
+      linear.E_L            = get_positive_double(prm, lin, "E_L");
+      linear.E_T            = get_positive_double(prm, lin, "E_T");
+      linear.G_LT           = get_positive_double(prm, lin, "G_LT");
+      linear.nu_LT          = prm.get_double("nu_LT");
+      linear.nu_TT          = prm.get_double("nu_TT");
       require(linear.nu_TT > -1. && linear.nu_TT < 1.,
               lin + "/nu_TT",
               "must lie in (-1, 1)");
@@ -173,7 +178,7 @@ namespace YarnImpact
       prm.leave_subsection();
 
       prm.enter_subsection("Contact");
-      contact.penalty = get_positive_double(prm, "FE/Contact", "Penalty");
+      contact.penalty  = get_positive_double(prm, "FE/Contact", "Penalty");
       contact.friction = prm.get_double("Friction coefficient");
       require(contact.friction >= 0.,
               "FE/Contact/Friction coefficient",
@@ -182,8 +187,6 @@ namespace YarnImpact
       require(contact.damping_ratio >= 0. && contact.damping_ratio < 1.,
               "FE/Contact/Damping ratio",
               "must lie in [0, 1)");
-      contact.regularisation_speed =
-        get_positive_double(prm, "FE/Contact", "Friction regularisation speed");
       prm.leave_subsection();
       prm.leave_subsection();
     }

@@ -15,10 +15,11 @@ namespace YarnImpact
 
     void
     create_yarn_section(Triangulation<2, 2> &section,
-                        const double         a_y,
-                        const double         a_z,
-                        const unsigned int   refinements,
-                        const bool           half_section)
+                        const double a_y,
+                        const double a_z,
+                        const unsigned int refinements,
+                        const bool half_section,
+                        const bool preserve_area)
     {
       Triangulation<2> disk;
       GridGenerator::hyper_ball_balanced(disk, Point<2>(), 1.);
@@ -44,6 +45,13 @@ namespace YarnImpact
           return Point<2>(a_y * p[0], a_z * p[1]);
         },
         flat);
+      if (preserve_area)
+        {
+          const double ellipse =
+            (half_section ? 0.5 : 1.) * numbers::PI * a_y * a_z;
+          const double k = std::sqrt(ellipse / GridTools::volume(flat));
+          GridTools::scale(k, flat);
+        }
       // Keep only the geometry: the manifolds of the unit disk do not
       // describe the ellipse.
       flat.reset_all_manifolds();
@@ -56,11 +64,12 @@ namespace YarnImpact
 
 
     void
-    create_yarn_mesh(Triangulation<3, 3>       &mesh,
-                     const Parameters::Yarn    &yarn,
+    create_yarn_mesh(Triangulation<3, 3> &mesh,
+                     const Parameters::Yarn &yarn,
                      const Parameters::Symmetry symmetry,
-                     const unsigned int         n_axial_cells,
-                     const unsigned int         section_refinements)
+                     const unsigned int n_axial_cells,
+                     const unsigned int section_refinements,
+                     const bool preserve_section_area)
     {
       const bool reduced = symmetry != Parameters::Symmetry::none;
       Triangulation<2> section;
@@ -68,10 +77,11 @@ namespace YarnImpact
                           yarn.thickness_semi_axis,
                           yarn.width_semi_axis,
                           section_refinements,
-                          symmetry == Parameters::Symmetry::quarter);
+                          symmetry == Parameters::Symmetry::quarter,
+                          preserve_section_area);
 
       const unsigned int n_slices = reduced ? n_axial_cells / 2 : n_axial_cells;
-      const double length = reduced ? 0.5 * yarn.length : yarn.length;
+      const double length         = reduced ? 0.5 * yarn.length : yarn.length;
       Triangulation<3> extruded;
       GridGenerator::extrude_triangulation(section,
                                            n_slices + 1,

@@ -47,14 +47,14 @@ namespace YarnImpact
      */
     SmithSolution
     smith_solution(const AxialProperties &axial,
-                   const double           impact_speed,
-                   const double           projectile_mass);
+                   const double impact_speed,
+                   const double projectile_mass);
 
     /** Impact speed that gives the strain @p failure_strain behind the
      * longitudinal front: Smith's critical velocity [m/s]. */
     double
     critical_velocity(const AxialProperties &axial,
-                      const double           failure_strain);
+                      const double failure_strain);
   } // namespace Analysis
 } // namespace YarnImpact
 

@@ -21,8 +21,9 @@ namespace YarnImpact
       /** Current (laboratory-frame) distance |x| of the station from the
        * impact plane [m]. */
       std::vector<double> position;
-      /** Longitudinal (fibre) strain, \f$\lambda_f - 1\f$, the largest over
-       * the station [-]. */
+      /** Longitudinal (fibre) strain, \f$\lambda_f - 1\f$, averaged over the
+       * section at the station (area-weighted, so that it is the yarn's
+       * tension over its axial stiffness) [-]. */
       std::vector<double> axial_strain;
       /** Deflection in the impact direction, \f$-u_y\f$, the largest over
        * the station [m]. */
@@ -69,7 +70,7 @@ namespace YarnImpact
      * A front that has not started yet is at 0.
      */
     WaveFrontPositions
-    measure_wave_fronts(const StationProfile               &profile,
+    measure_wave_fronts(const StationProfile &profile,
                         const Parameters::WaveFronts &thresholds);
   } // namespace Analysis
 } // namespace YarnImpact

@@ -47,7 +47,7 @@ namespace YarnImpact
      * header. */
     History(const std::string &directory,
             const std::string &model_name,
-            const bool         is_root);
+            const bool is_root);
 
     /** Append a row (flushed, so a crashed run keeps what it had). */
     void
@@ -65,7 +65,7 @@ namespace YarnImpact
     column_names();
 
   private:
-    std::ofstream           file;
+    std::ofstream file;
     std::vector<HistoryRow> all_rows;
   };
 } // namespace YarnImpact

@@ -93,6 +93,11 @@ namespace YarnImpact
     virtual void
     setup(const Projectile &projectile, std::ostream &out) = 0;
 
+    /** Highest y coordinate of the discretised yarn at t = 0 (after
+     * setup()): the projectile starts touching it [m]. */
+    virtual double
+    yarn_top() const = 0;
+
     /** Critical (largest stable) time step of the current configuration,
      * before the safety factor [s]. */
     virtual double
@@ -142,7 +147,7 @@ namespace YarnImpact
     virtual std::string
     write_snapshot(const std::string &directory,
                    const unsigned int index,
-                   const double       time) const = 0;
+                   const double time) const = 0;
 
     /** Number of cells (FE) or spheres (DEM) of the whole discretisation,
      * for throughput figures. */

@@ -29,18 +29,22 @@ namespace YarnImpact
   /** What a finished run measured, for the summary and the checks. */
   struct RunSummary
   {
-    std::string   model_name;
-    unsigned long n_steps            = 0;
-    double        end_time           = 0.;   ///< [s]
-    double        wall_time          = 0.;   ///< [s]
-    double        max_energy_error   = 0.;   ///< fraction of initial energy
-    double        first_failure_time = -1.;  ///< [s], -1 if none
-    double        final_velocity     = 0.;   ///< [m/s]
+    std::string model_name;
+    unsigned long n_steps     = 0;
+    double end_time           = 0.;  ///< [s]
+    double wall_time          = 0.;  ///< [s]
+    double max_energy_error   = 0.;  ///< fraction of initial energy
+    double first_failure_time = -1.; ///< [s], -1 if none
+    double final_velocity     = 0.;  ///< [m/s]
     /** Quantities in the verification window. */
     double mean_deceleration  = 0.; ///< [m/s^2]
     double plateau_strain     = 0.; ///< [-]
     double longitudinal_speed = 0.; ///< [m/s]
     double transverse_speed   = 0.; ///< [m/s]
+    /** Time at which the yarn was cut through [s], -1 if it was not. */
+    double cut_through_time = -1.;
+    /** History rows at ten evenly spaced times (interpolated). */
+    std::vector<HistoryRow> samples;
     /** Lines "name: measured, reference, relative error, PASSED/FAILED". */
     std::vector<std::string> checks;
     /** Whether every requested check passed. */
@@ -62,10 +66,10 @@ namespace YarnImpact
      * @param communicator the model's MPI communicator
      * @param out screen stream (written on rank 0 only)
      */
-    ImpactSimulation(const Parameters::Shared     &parameters,
+    ImpactSimulation(const Parameters::Shared &parameters,
                      std::unique_ptr<ImpactModel> model,
-                     const MPI_Comm                communicator,
-                     std::ostream                 &out);
+                     const MPI_Comm communicator,
+                     std::ostream &out);
 
     ~ImpactSimulation();
 

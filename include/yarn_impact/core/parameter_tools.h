@@ -30,7 +30,7 @@ namespace YarnImpact
      * holds.
      */
     void
-    require(const bool         condition,
+    require(const bool condition,
             const std::string &name,
             const std::string &message);
 
@@ -38,14 +38,14 @@ namespace YarnImpact
      * it to be strictly positive. */
     double
     get_positive_double(dealii::ParameterHandler &prm,
-                        const std::string        &section,
-                        const std::string        &entry);
+                        const std::string &section,
+                        const std::string &entry);
 
     /** Read an integer entry and require it to be strictly positive. */
     unsigned int
     get_positive_integer(dealii::ParameterHandler &prm,
-                         const std::string        &section,
-                         const std::string        &entry);
+                         const std::string &section,
+                         const std::string &entry);
   } // namespace Parameters
 } // namespace YarnImpact
 

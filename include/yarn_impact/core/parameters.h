@@ -126,6 +126,8 @@ namespace YarnImpact
       /** A run stops when the energy balance error exceeds this fraction of
        * the initial energy [-]. */
       double energy_error_limit = 0.05;
+      /** Whether the run stops when the yarn is cut through. */
+      bool stop_at_cut_through = false;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
@@ -216,12 +218,12 @@ namespace YarnImpact
     /** All shared parameters. */
     struct Shared
     {
-      General      general;
-      Yarn         yarn;
-      Projectile   projectile;
-      Time         time;
-      Output       output;
-      WaveFronts   wave_fronts;
+      General general;
+      Yarn yarn;
+      Projectile projectile;
+      Time time;
+      Output output;
+      WaveFronts wave_fronts;
       Verification verification;
 
       static void

@@ -26,7 +26,16 @@ namespace YarnImpact
      * @param yarn_thickness_semi_axis semi-axis of the yarn section along y [m]
      */
     Projectile(const Parameters::Projectile &parameters,
-               const double                  yarn_thickness_semi_axis);
+               const double yarn_thickness_semi_axis);
+
+    /** Put the projectile at rest position touching the top of the yarn,
+     * its lowest line at y = @p yarn_top [m]. */
+    void
+    place_on(const double yarn_top)
+    {
+      y0 = yarn_top + r;
+      y  = y0;
+    }
 
     /** Radius of the cylinder [m]. */
     double
@@ -94,7 +103,8 @@ namespace YarnImpact
     void
     kick(const double dt, const double force);
 
-    /** Drift: \f$y \mathrel{+}= \Delta t\, v\f$. @param dt time increment [s] */
+    /** Drift: \f$y \mathrel{+}= \Delta t\, v\f$. @param dt time increment [s]
+     */
     void
     drift(const double dt)
     {
@@ -115,7 +125,7 @@ namespace YarnImpact
     double y0;
     double y;
     double v;
-    bool   is_prescribed;
+    bool is_prescribed;
     double work = 0.;
   };
 } // namespace YarnImpact

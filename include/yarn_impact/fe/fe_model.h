@@ -20,13 +20,13 @@ namespace YarnImpact
      */
     void
     validate(const YarnImpact::Parameters::Shared &shared,
-             const Parameters                     &parameters);
+             const Parameters &parameters);
 
     /** Create the FE model of the yarn described by @p shared. */
     std::unique_ptr<ImpactModel>
     create_model(const YarnImpact::Parameters::Shared &shared,
-                 const Parameters                     &parameters,
-                 const MPI_Comm                        communicator);
+                 const Parameters &parameters,
+                 const MPI_Comm communicator);
   } // namespace FE
 } // namespace YarnImpact
 

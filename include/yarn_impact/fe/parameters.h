@@ -15,7 +15,7 @@ namespace YarnImpact
     /** Constitutive law of the continuum yarn. */
     enum class LawType
     {
-      charmetant,                     ///< the paper's hyperelastic law
+      charmetant,                    ///< the paper's hyperelastic law
       linear_transversely_isotropic, ///< the classical yarn model
     };
 
@@ -55,8 +55,6 @@ namespace YarnImpact
       double friction = 0.;
       /** Viscous damping of the contact, fraction of critical [-]. */
       double damping_ratio = 0.;
-      /** Sliding speed below which friction is regularised [m/s]. */
-      double regularisation_speed = 0.01;
     };
 
     /** All parameters of the FE model (subsection `FE`). */
@@ -73,12 +71,16 @@ namespace YarnImpact
       unsigned int n_axial_cells = 100;
       /** Refinements of the 12-cell section [-]. */
       unsigned int section_refinements = 0;
+      /** Scale the polygonal section so that its area is that of the
+       * ellipse (exact mass per length and axial stiffness on coarse
+       * sections). */
+      bool preserve_section_area = true;
       /** Refinements of the 3D mesh in all directions [-]. */
       unsigned int global_refinements = 0;
 
       CharmetantParameters charmetant;
-      LinearParameters     linear;
-      ContactParameters    contact;
+      LinearParameters linear;
+      ContactParameters contact;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

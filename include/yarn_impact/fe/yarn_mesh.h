@@ -32,14 +32,16 @@ namespace YarnImpact
      * semi-axis a_z): `GridGenerator::hyper_ball_balanced` (12 cells),
      * refined @p refinements times on the unit disk with its manifolds, then
      * scaled to the ellipse. For quarter symmetry only the cells with z >= 0
-     * are kept.
+     * are kept. With @p preserve_area the mesh is then scaled about the
+     * centre so that its area is exactly that of the (half) ellipse.
      */
     void
     create_yarn_section(dealii::Triangulation<2, 2> &section,
-                        const double                 a_y,
-                        const double                 a_z,
-                        const unsigned int           refinements,
-                        const bool                   half_section);
+                        const double a_y,
+                        const double a_z,
+                        const unsigned int refinements,
+                        const bool half_section,
+                        const bool preserve_area);
 
     /**
      * The yarn: the section extruded along x over [-L/2, L/2] (symmetry
@@ -47,11 +49,12 @@ namespace YarnImpact
      * length, boundary ids of BoundaryIds set by position.
      */
     void
-    create_yarn_mesh(dealii::Triangulation<3, 3>    &mesh,
+    create_yarn_mesh(dealii::Triangulation<3, 3> &mesh,
                      const YarnImpact::Parameters::Yarn &yarn,
                      const YarnImpact::Parameters::Symmetry symmetry,
-                     const unsigned int              n_axial_cells,
-                     const unsigned int              section_refinements);
+                     const unsigned int n_axial_cells,
+                     const unsigned int section_refinements,
+                     const bool preserve_section_area);
   } // namespace FE
 } // namespace YarnImpact
 

@@ -1,0 +1,117 @@
+/**
+ * FE benchmark (not a test): throughput of the FE force loop with the
+ * Charmetant law, in cell-steps per second per core, on the paper's mesh
+ * refined along the axis, and the wall time of the default case.
+ *
+ * Usage: bench_fe_throughput [n_steps] [prm file of the default case]
+ */
+#include <yarn_impact/application.h>
+#include <yarn_impact/core/impact_simulation.h>
+#include <yarn_impact/core/projectile.h>
+#include <yarn_impact/fe/fe_model.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+using namespace YarnImpact;
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const bool is_root  = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+  const unsigned int n_steps = argc > 1 ? std::stoi(argv[1]) : 400;
+  std::ostream &out          = std::cout;
+
+  if (is_root)
+    out << "FE force-loop throughput, Charmetant law, " << n_ranks
+        << " rank(s)\n"
+        << std::setw(10) << "cells" << std::setw(12) << "steps" << std::setw(14)
+        << "wall [s]" << std::setw(26) << "cell-steps/s per core\n";
+  for (const unsigned int axial : {100u, 400u, 1600u})
+    {
+      dealii::ParameterHandler prm;
+      AllParameters::declare_parameters(prm);
+      std::ostringstream input;
+      input << "set Symmetry = none\nsubsection FE\n set Cells along the axis"
+            << " = " << axial << "\nend\n";
+      prm.parse_input_from_string(input.str());
+      AllParameters p;
+      p.parse_parameters(prm);
+
+      auto model = FE::create_model(p.shared, p.fe, comm);
+      Projectile projectile(p.shared.projectile,
+                            p.shared.yarn.thickness_semi_axis);
+      std::ostringstream sink;
+      model->setup(projectile, sink);
+      projectile.place_on(model->yarn_top());
+      const double dt = 0.8 * model->stable_time_step();
+      double f        = model->compute_forces(projectile, dt);
+      // Run into the impact until the longitudinal wave has crossed the
+      // yarn, so that every cell is deformed (undeformed cells take cheap
+      // branches of the law).
+      const unsigned int n_warm =
+        static_cast<unsigned int>(1.2 * 0.5 * p.shared.yarn.length / 7950. /
+                                  dt) +
+        1;
+      for (unsigned int s = 0; s < n_warm; ++s)
+        {
+          model->kick(0.5 * dt);
+          projectile.kick(0.5 * dt, f);
+          model->drift(dt);
+          projectile.drift(dt);
+          f = model->compute_forces(projectile, dt);
+          model->kick(0.5 * dt);
+          projectile.kick(0.5 * dt, f);
+        }
+      MPI_Barrier(comm);
+      dealii::Timer timer;
+      for (unsigned int s = 0; s < n_steps; ++s)
+        {
+          model->kick(0.5 * dt);
+          projectile.kick(0.5 * dt, f);
+          model->drift(dt);
+          projectile.drift(dt);
+          f = model->compute_forces(projectile, dt);
+          model->kick(0.5 * dt);
+          projectile.kick(0.5 * dt, f);
+        }
+      MPI_Barrier(comm);
+      const double wall = timer.wall_time();
+      const double rate =
+        double(model->n_elements()) * n_steps / wall / n_ranks;
+      if (is_root)
+        out << std::setw(10) << model->n_elements() << std::setw(12) << n_steps
+            << std::setw(14) << std::setprecision(4) << wall << std::setw(24)
+            << std::setprecision(4) << rate / 1e6 << " M\n";
+    }
+
+  if (argc > 2)
+    {
+      dealii::ParameterHandler prm;
+      AllParameters::declare_parameters(prm);
+      AllParameters p           = read_parameters(argv[2], prm);
+      p.shared.output.verbosity = Parameters::Verbosity::quiet;
+      p.shared.output.directory = "bench-results";
+      std::filesystem::create_directories(p.shared.output.directory);
+      std::ostringstream sink;
+      dealii::Timer timer;
+      ImpactSimulation simulation(p.shared,
+                                  FE::create_model(p.shared, p.fe, comm),
+                                  comm,
+                                  sink);
+      const auto summary = simulation.run();
+      if (is_root)
+        out << "default case " << argv[2] << ": " << summary.n_steps
+            << " steps to " << summary.end_time * 1e6 << " us, wall time "
+            << timer.wall_time() << " s (with output)\n";
+    }
+}

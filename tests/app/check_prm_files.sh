@@ -1,0 +1,9 @@
+#!/bin/bash
+# Every shipped prm file parses and validates.
+exe=$1
+src=$2
+failures=0
+for prm in "$src"/prm/*.prm; do
+  if "$exe" --check "$prm" > /dev/null; then echo "ok     $prm"; else echo "FAILED $prm"; failures=$((failures + 1)); fi
+done
+[ $failures -eq 0 ]
