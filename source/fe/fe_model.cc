@@ -357,17 +357,17 @@ namespace YarnImpact
               continue;
             seen[ix]                               = true;
             const std::array<unsigned int, 3> node = {
-              ix,
-              cell_dofs[c * n_cell_dofs + 3 * a + 1],
-              cell_dofs[c * n_cell_dofs + 3 * a + 2]};
+              {ix,
+               cell_dofs[c * n_cell_dofs + 3 * a + 1],
+               cell_dofs[c * n_cell_dofs + 3 * a + 2]}};
             nodes.push_back(node);
             const double x = reference_coordinate[node[0]];
             const double z = reference_coordinate[node[2]];
             node_station.push_back(static_cast<unsigned int>(
               std::round(std::abs(x) / station_spacing)));
-            std::array<bool, 3> fixed = {false, false, false};
+            std::array<bool, 3> fixed = {{false, false, false}};
             if (std::abs(std::abs(x) - 0.5 * yarn.length) < tol)
-              fixed = {true, true, true};
+              fixed = {{true, true, true}};
             if (reduced && std::abs(x) < tol)
               fixed[0] = true;
             if (shared.general.symmetry ==
