@@ -193,19 +193,20 @@ namespace YarnImpact
                                 Matrix3 &S,
                                 Invariants &inv) const
     {
-      const double I4 = C[0];
-      const double I1 = C[0] + C[4] + C[8];
-      const double I5 = C[0] * C[0] + C[1] * C[1] + C[2] * C[2];
-      const double I3 = J * J;
+      const double I4     = C[0];
+      const double I1     = C[0] + C[4] + C[8];
+      const double I5     = C[0] * C[0] + C[1] * C[1] + C[2] * C[2];
+      const double I3     = J * J;
+      const double inv_I4 = 1. / I4;
+      const double inv_I3 = 1. / I3;
 
       // Inverse of C from its cofactors.
-      const double inv_I3 = 1. / I3;
-      const double Ci00   = (C[4] * C[8] - C[5] * C[5]) * inv_I3;
-      const double Ci01   = (C[2] * C[5] - C[1] * C[8]) * inv_I3;
-      const double Ci02   = (C[1] * C[5] - C[2] * C[4]) * inv_I3;
-      const double Ci11   = (C[0] * C[8] - C[2] * C[2]) * inv_I3;
-      const double Ci12   = (C[1] * C[2] - C[0] * C[5]) * inv_I3;
-      const double Ci22   = (C[0] * C[4] - C[1] * C[1]) * inv_I3;
+      const double Ci00 = (C[4] * C[8] - C[5] * C[5]) * inv_I3;
+      const double Ci01 = (C[2] * C[5] - C[1] * C[8]) * inv_I3;
+      const double Ci02 = (C[1] * C[5] - C[2] * C[4]) * inv_I3;
+      const double Ci11 = (C[0] * C[8] - C[2] * C[2]) * inv_I3;
+      const double Ci12 = (C[1] * C[2] - C[0] * C[5]) * inv_I3;
+      const double Ci22 = (C[0] * C[4] - C[1] * C[1]) * inv_I3;
 
       const double log_I4 = std::log(I4);
       const double Ie     = 0.5 * log_I4;
@@ -217,21 +218,31 @@ namespace YarnImpact
 
       // Distortion from the Schur complement of C on the section plane,
       // which stays accurate as s -> 0 (physics.md section 1.5).
-      const double inv_I4 = 1. / I4;
-      const double t11    = C[4] - C[1] * C[1] * inv_I4;
-      const double t22    = C[8] - C[2] * C[2] * inv_I4;
-      const double t12    = C[5] - C[1] * C[2] * inv_I4;
+      const double t11 = C[4] - C[1] * C[1] * inv_I4;
+      const double t22 = C[8] - C[2] * C[2] * inv_I4;
+      const double t12 = C[5] - C[1] * C[2] * inv_I4;
       const double s2 =
-        ((t11 - t22) * (t11 - t22) + 4. * t12 * t12) / (4. * I3 * inv_I4);
+        ((t11 - t22) * (t11 - t22) + 4. * t12 * t12) * (0.25 * I4 * inv_I3);
       const double s = std::sqrt(s2);
-      const double u = std::asinh(s);
+      // psi = asinh(s)/s: its Taylor series in s^2 up to s^16 is exact to
+      // round-off for s < 0.1 (the usual range) and needs no division.
       const double psi =
-        (s > 1e-4 ? u / s
-                  : 1. - s2 / 6. + 0.075 * s2 * s2 - 5. / 112. * s2 * s2 * s2);
+        (s < 0.1 ?
+           1. +
+             s2 * (-1. / 6. +
+                   s2 * (3. / 40. +
+                         s2 * (-5. / 112. +
+                               s2 * (35. / 1152. +
+                                     s2 * (-63. / 2816. +
+                                           s2 * (231. / 13312. +
+                                                 s2 * (-143. / 10240. +
+                                                       s2 * 6435. /
+                                                         557056.))))))) :
+           std::asinh(s) / s);
+      const double u = s * psi;
 
-      const double rt      = std::sqrt(I3 * I4);
-      const double zeta    = (I1 * I4 - I5) / (2. * rt);
-      const double inv_2rt = 1. / (2. * rt);
+      const double inv_2rt = 0.5 / (std::abs(J) * std::sqrt(I4));
+      const double zeta    = (I1 * I4 - I5) * inv_2rt;
       const double half_z  = 0.5 * zeta;
       // d zeta / dC, entry by entry (M = e_x, CM = first column of C).
       const double dz00 =
