@@ -1,3 +1,4 @@
+#include <yarn_impact/analysis/model_comparison.h>
 #include <yarn_impact/application.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/parameter_tools.h>
@@ -7,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -206,8 +208,9 @@ namespace YarnImpact
         else
           models = {parameters.shared.general.model};
 
-        bool passed = true;
-        std::ostringstream summary_text;
+        bool                                 passed = true;
+        std::ostringstream                   summary_text;
+        std::vector<std::vector<HistoryRow>> histories;
         for (const auto type : models)
           {
             ImpactSimulation simulation(parameters.shared,
@@ -217,6 +220,28 @@ namespace YarnImpact
             const RunSummary summary = simulation.run();
             print_summary(summary, summary_text);
             passed = passed && summary.checks_passed;
+            histories.push_back(simulation.history());
+          }
+        if (histories.size() == 2 && is_root)
+          {
+            const auto comparison =
+              Analysis::compare_models(histories[0],
+                                       histories[1],
+                                       output.directory);
+            Analysis::print_comparison(comparison,
+                                       histories[0],
+                                       histories[1],
+                                       summary_text);
+            const std::string command =
+              "/usr/bin/python3 " YARN_IMPACT_SCRIPT_DIR
+              "/plot_comparison.py '" +
+              output.directory + "' > /dev/null 2>&1";
+            if (std::system(command.c_str()) != 0)
+              summary_text << "  (plots skipped: " << command
+                           << " failed; python3-matplotlib missing?)\n";
+            else
+              summary_text << "  plots: velocity_comparison.png, "
+                              "wave_fronts.png\n";
           }
         if (is_root)
           {
