@@ -56,6 +56,103 @@ namespace YarnImpact
           }
       }
 
+      /** What the force loop keeps of one cell besides its forces. */
+      struct CellResult
+      {
+        double energy         = 0.;  // strain energy [J]
+        double max_elongation = -1.; // largest ln(lambda_f)
+        double sum_elongation = 0.;  // sum over Gauss points of ln(lambda_f)
+        double max_compaction = 0.;  // largest |I_tc|
+      };
+
+      /**
+       * Internal forces f (24 values, not yet negated) of one cell from its
+       * nodal displacements u, shape gradients and JxW: the body of the hot
+       * loop, instantiated per law below.
+       */
+      template <class Law>
+      inline CellResult
+      integrate_cell(const Law    &law,
+                     const double *u,
+                     const double *grad,
+                     const double *JxW,
+                     double       *f)
+      {
+        CellResult r;
+        for (unsigned int k = 0; k < n_cell_dofs; ++k)
+          f[k] = 0.;
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const double *g = grad + q * n_nodes * 3;
+            Matrix3       F, P;
+            deformation_gradient(u, g, F);
+            Invariants   inv;
+            const double W = law.stress(F, P, inv);
+            r.max_elongation = std::max(r.max_elongation, inv.elongation);
+            r.sum_elongation += inv.elongation;
+            r.max_compaction =
+              std::max(r.max_compaction, std::abs(inv.compaction));
+            r.energy += W * JxW[q];
+            for (double &p : P)
+              p *= JxW[q];
+            for (unsigned int a = 0; a < n_nodes; ++a)
+              for (unsigned int i = 0; i < 3; ++i)
+                f[3 * a + i] += P[3 * i] * g[3 * a] +
+                                P[3 * i + 1] * g[3 * a + 1] +
+                                P[3 * i + 2] * g[3 * a + 2];
+          }
+        return r;
+      }
+
+      // Compiled twice, for CPUs with AVX2 and FMA and for any x86-64; the
+      // loader picks the clone that the machine runs.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#  define YARN_IMPACT_CLONES \
+    __attribute__((target_clones("arch=haswell", "default"), flatten))
+#else
+#  define YARN_IMPACT_CLONES
+#endif
+
+      YARN_IMPACT_CLONES CellResult
+      integrate_cell_charmetant(const CharmetantLaw &law,
+                                const double        *u,
+                                const double        *grad,
+                                const double        *JxW,
+                                double              *f)
+      {
+        return integrate_cell(law, u, grad, JxW, f);
+      }
+
+      YARN_IMPACT_CLONES CellResult
+      integrate_cell_linear(const LinearTransverselyIsotropicLaw &law,
+                            const double                         *u,
+                            const double                         *grad,
+                            const double                         *JxW,
+                            double                               *f)
+      {
+        return integrate_cell(law, u, grad, JxW, f);
+      }
+
+      inline CellResult
+      integrate(const CharmetantLaw &law,
+                const double        *u,
+                const double        *grad,
+                const double        *JxW,
+                double              *f)
+      {
+        return integrate_cell_charmetant(law, u, grad, JxW, f);
+      }
+
+      inline CellResult
+      integrate(const LinearTransverselyIsotropicLaw &law,
+                const double                         *u,
+                const double                         *grad,
+                const double                         *JxW,
+                double                               *f)
+      {
+        return integrate_cell_linear(law, u, grad, JxW, f);
+      }
+
       inline double
       determinant(const Matrix3 &F)
       {
@@ -501,37 +598,12 @@ namespace YarnImpact
           const double *JxW        = &cell_JxW[c * n_q];
           double u[n_cell_dofs], f[n_cell_dofs];
           for (unsigned int k = 0; k < n_cell_dofs; ++k)
-            {
-              u[k] = displacement.local_element(dofs[k]);
-              f[k] = 0.;
-            }
-          double max_elongation = -1., max_compaction = 0., cell_energy = 0.,
-                 sum_elongation = 0.;
-          for (unsigned int q = 0; q < n_q; ++q)
-            {
-              const double *g = grad + q * n_nodes * 3;
-              Matrix3 F, P;
-              deformation_gradient(u, g, F);
-              Invariants inv;
-              const double W = law.stress(F, P, inv);
-              max_elongation = std::max(max_elongation, inv.elongation);
-              sum_elongation += inv.elongation;
-              max_compaction =
-                std::max(max_compaction, std::abs(inv.compaction));
-              cell_energy += W * JxW[q];
-              for (unsigned int a = 0; a < n_nodes; ++a)
-                {
-                  const double g0 = g[3 * a] * JxW[q],
-                               g1 = g[3 * a + 1] * JxW[q],
-                               g2 = g[3 * a + 2] * JxW[q];
-                  for (unsigned int i = 0; i < 3; ++i)
-                    f[3 * a + i] +=
-                      P[3 * i] * g0 + P[3 * i + 1] * g1 + P[3 * i + 2] * g2;
-                }
-            }
-          cell_strain[c]      = std::expm1(max_elongation);
-          cell_mean_strain[c] = std::expm1(sum_elongation / n_q);
-          cell_compaction[c]  = max_compaction;
+            u[k] = displacement.local_element(dofs[k]);
+          const CellResult r = integrate(law, u, grad, JxW, f);
+          const double cell_energy = r.energy;
+          cell_strain[c]           = std::expm1(r.max_elongation);
+          cell_mean_strain[c]      = std::expm1(r.sum_elongation / n_q);
+          cell_compaction[c]       = r.max_compaction;
           if (failure && cell_strain[c] > failure_strain)
             {
               // The cell breaks: it carries no force from now on, and its

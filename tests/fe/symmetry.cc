@@ -63,8 +63,8 @@ main(int argc, char **argv)
         worst = std::max(worst,
                          std::abs(histories[k][i].projectile_velocity - v0) /
                            histories[0][0].projectile_velocity);
-      if (i % 5 == 0)
-        std::printf("%6.1f %9.4f %9.4f %9.4f\n",
+      if (i % 5 == 0 && i <= 10)
+        std::printf("%6.1f %9.3f %9.3f %9.3f\n",
                     histories[0][i].time * 1e6,
                     v0,
                     histories[1][i].projectile_velocity,
