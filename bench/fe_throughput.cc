@@ -62,28 +62,21 @@ main(int argc, char **argv)
         static_cast<unsigned int>(1.2 * 0.5 * p.shared.yarn.length / 7950. /
                                   dt) +
         1;
+      const auto step = [&]() {
+        model->kick(0.5 * dt);
+        projectile.kick(0.5 * dt, f);
+        model->drift(dt);
+        projectile.drift(dt);
+        f = model->compute_forces(projectile, dt);
+        model->kick(0.5 * dt);
+        projectile.kick(0.5 * dt, f);
+      };
       for (unsigned int s = 0; s < n_warm; ++s)
-        {
-          model->kick(0.5 * dt);
-          projectile.kick(0.5 * dt, f);
-          model->drift(dt);
-          projectile.drift(dt);
-          f = model->compute_forces(projectile, dt);
-          model->kick(0.5 * dt);
-          projectile.kick(0.5 * dt, f);
-        }
+        step();
       MPI_Barrier(comm);
       dealii::Timer timer;
       for (unsigned int s = 0; s < n_steps; ++s)
-        {
-          model->kick(0.5 * dt);
-          projectile.kick(0.5 * dt, f);
-          model->drift(dt);
-          projectile.drift(dt);
-          f = model->compute_forces(projectile, dt);
-          model->kick(0.5 * dt);
-          projectile.kick(0.5 * dt, f);
-        }
+        step();
       MPI_Barrier(comm);
       const double wall = timer.wall_time();
       const double rate =

@@ -76,6 +76,30 @@ namespace YarnImpact
       Number
       energy(const Number (&C)[9]) const;
 
+      /**
+       * The stress and energy evaluated for a scalar (V = double) or for
+       * four Gauss points at once (V = internal::Double4): the same code,
+       * so the unit tests of the scalar path cover the vector one.
+       * @param F deformation gradient (row-major)
+       * @param P first Piola-Kirchhoff stress [Pa] (output)
+       * @param Ie, Itc, Itd the invariants (output)
+       * @return W [J/m^3]
+       */
+      template <typename V>
+      V
+      stress_kernel(const V (&F)[9], V (&P)[9], V &Ie, V &Itc, V &Itd) const;
+
+      /** Second Piola-Kirchhoff stress from C and J = det F, as
+       * stress_kernel(). */
+      template <typename V>
+      V
+      second_piola_kernel(const V (&C)[9],
+                          const V J,
+                          V (&S)[9],
+                          V &Ie,
+                          V &Itc,
+                          V &Itd) const;
+
       /** Small-strain axial modulus k_e [Pa]. */
       double
       axial_modulus() const
@@ -156,16 +180,107 @@ namespace YarnImpact
       double C11, C12, C22, C23, G12, G23;
     };
 
+    // The lane functions pass Double4 by value; they are inline, so the
+    // ABI note of GCC about AVX vectors does not apply.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
     namespace internal
     {
-      /** C = F^T F (row-major, symmetric) and J = det F. */
+      /**
+       * Four doubles in one SIMD register (GCC vector extension): the FE
+       * force loop evaluates the law at four Gauss points at once. On CPUs
+       * without AVX the compiler splits it into two SSE2 halves.
+       */
+      typedef double Double4 __attribute__((vector_size(32)));
+
+      // Lane-wise functions, for double and Double4 alike.
       inline double
-      right_cauchy_green(const Matrix3 &F, Matrix3 &C)
+      lane_log(const double x)
+      {
+        return std::log(x);
+      }
+      inline double
+      lane_sqrt(const double x)
+      {
+        return std::sqrt(x);
+      }
+      inline double
+      lane_abs(const double x)
+      {
+        return std::abs(x);
+      }
+      /** x^e for x > 0, 0 for x = 0; exp(e ln x) costs less than glibc's
+       * pow and is accurate to a few ulp here. */
+      inline double
+      lane_pow(const double x, const double e)
+      {
+        return x > 0. ? std::exp(e * std::log(x)) : 0.;
+      }
+      /** 1 for x >= 0, -1 otherwise. */
+      inline double
+      lane_sign(const double x)
+      {
+        return x >= 0. ? 1. : -1.;
+      }
+      /** asinh(s)/s: its Taylor series in s^2 up to s^16 is exact to
+       * round-off for s < 0.1 (the usual range) and needs no division. */
+      inline double
+      lane_asinh_ratio(const double s, const double s2)
+      {
+        if (s >= 0.1)
+          return std::asinh(s) / s;
+        return 1. +
+               s2 *
+                 (-1. / 6. +
+                  s2 *
+                    (3. / 40. +
+                     s2 * (-5. / 112. +
+                           s2 * (35. / 1152. +
+                                 s2 * (-63. / 2816. +
+                                       s2 * (231. / 13312. +
+                                             s2 * (-143. / 10240. +
+                                                   s2 * 6435. / 557056.)))))));
+      }
+
+#define YARN_IMPACT_LANEWISE(name, expression) \
+  inline Double4 name(const Double4 x)         \
+  {                                            \
+    Double4 r;                                 \
+    for (unsigned int l = 0; l < 4; ++l)       \
+      r[l] = expression;                       \
+    return r;                                  \
+  }
+      YARN_IMPACT_LANEWISE(lane_log, std::log(x[l]))
+      YARN_IMPACT_LANEWISE(lane_sqrt, std::sqrt(x[l]))
+      YARN_IMPACT_LANEWISE(lane_abs, std::abs(x[l]))
+      YARN_IMPACT_LANEWISE(lane_sign, x[l] >= 0. ? 1. : -1.)
+#undef YARN_IMPACT_LANEWISE
+      inline Double4
+      lane_pow(const Double4 x, const double e)
+      {
+        Double4 r;
+        for (unsigned int l = 0; l < 4; ++l)
+          r[l] = lane_pow(x[l], e);
+        return r;
+      }
+      inline Double4
+      lane_asinh_ratio(const Double4 s, const Double4 s2)
+      {
+        Double4 r;
+        for (unsigned int l = 0; l < 4; ++l)
+          r[l] = lane_asinh_ratio(s[l], s2[l]);
+        return r;
+      }
+
+      /** C = F^T F (row-major, symmetric); returns J = det F. */
+      template <typename V>
+      inline V
+      right_cauchy_green(const V (&F)[9], V (&C)[9])
       {
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int j = i; j < 3; ++j)
             {
-              const double c =
+              const V c =
                 F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
               C[3 * i + j] = c;
               C[3 * j + i] = c;
@@ -176,8 +291,9 @@ namespace YarnImpact
       }
 
       /** P = F S for a symmetric S. */
+      template <typename V>
       inline void
-      first_piola(const Matrix3 &F, const Matrix3 &S, Matrix3 &P)
+      first_piola(const V (&F)[9], const V (&S)[9], V (&P)[9])
       {
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int j = 0; j < 3; ++j)
@@ -187,97 +303,116 @@ namespace YarnImpact
     } // namespace internal
 
 
-    inline double
-    CharmetantLaw::second_piola(const Matrix3 &C,
-                                const double J,
-                                Matrix3 &S,
-                                Invariants &inv) const
+    template <typename V>
+    inline V
+    CharmetantLaw::second_piola_kernel(const V (&C)[9],
+                                       const V J,
+                                       V (&S)[9],
+                                       V &Ie,
+                                       V &Itc,
+                                       V &Itd) const
     {
-      const double I4     = C[0];
-      const double I1     = C[0] + C[4] + C[8];
-      const double I5     = C[0] * C[0] + C[1] * C[1] + C[2] * C[2];
-      const double I3     = J * J;
-      const double inv_I4 = 1. / I4;
-      const double inv_I3 = 1. / I3;
+      using namespace internal;
+      const V I4     = C[0];
+      const V I1     = C[0] + C[4] + C[8];
+      const V I5     = C[0] * C[0] + C[1] * C[1] + C[2] * C[2];
+      const V I3     = J * J;
+      const V inv_I4 = 1. / I4;
+      const V inv_I3 = 1. / I3;
 
       // Inverse of C from its cofactors.
-      const double Ci00 = (C[4] * C[8] - C[5] * C[5]) * inv_I3;
-      const double Ci01 = (C[2] * C[5] - C[1] * C[8]) * inv_I3;
-      const double Ci02 = (C[1] * C[5] - C[2] * C[4]) * inv_I3;
-      const double Ci11 = (C[0] * C[8] - C[2] * C[2]) * inv_I3;
-      const double Ci12 = (C[1] * C[2] - C[0] * C[5]) * inv_I3;
-      const double Ci22 = (C[0] * C[4] - C[1] * C[1]) * inv_I3;
+      const V Ci00 = (C[4] * C[8] - C[5] * C[5]) * inv_I3;
+      const V Ci01 = (C[2] * C[5] - C[1] * C[8]) * inv_I3;
+      const V Ci02 = (C[1] * C[5] - C[2] * C[4]) * inv_I3;
+      const V Ci11 = (C[0] * C[8] - C[2] * C[2]) * inv_I3;
+      const V Ci12 = (C[1] * C[2] - C[0] * C[5]) * inv_I3;
+      const V Ci22 = (C[0] * C[4] - C[1] * C[1]) * inv_I3;
 
-      const double log_I4 = std::log(I4);
-      const double Ie     = 0.5 * log_I4;
-      const double Itc    = 0.5 * std::log(J) - 0.25 * log_I4;
-      const double a_tc   = std::abs(Itc);
+      const V log_I4 = lane_log(I4);
+      Ie             = 0.5 * log_I4;
+      Itc            = 0.5 * lane_log(J) - 0.25 * log_I4;
+      const V a_tc   = lane_abs(Itc);
       // |I_tc|^(p-1), computed once for the stress and the energy.
-      const double pow_pm1 = (a_tc > 0. ? std::pow(a_tc, p - 1.) : 0.);
-      const double gp      = p * k_tc * pow_pm1 * (Itc >= 0. ? 1. : -1.);
+      const V pow_pm1 = lane_pow(a_tc, p - 1.);
+      const V gp      = (p * k_tc) * pow_pm1 * lane_sign(Itc);
 
       // Distortion from the Schur complement of C on the section plane,
       // which stays accurate as s -> 0 (physics.md section 1.5).
-      const double t11 = C[4] - C[1] * C[1] * inv_I4;
-      const double t22 = C[8] - C[2] * C[2] * inv_I4;
-      const double t12 = C[5] - C[1] * C[2] * inv_I4;
-      const double s2 =
+      const V t11 = C[4] - C[1] * C[1] * inv_I4;
+      const V t22 = C[8] - C[2] * C[2] * inv_I4;
+      const V t12 = C[5] - C[1] * C[2] * inv_I4;
+      const V s2 =
         ((t11 - t22) * (t11 - t22) + 4. * t12 * t12) * (0.25 * I4 * inv_I3);
-      const double s = std::sqrt(s2);
-      // psi = asinh(s)/s: its Taylor series in s^2 up to s^16 is exact to
-      // round-off for s < 0.1 (the usual range) and needs no division.
-      const double psi =
-        (s < 0.1 ?
-           1. +
-             s2 * (-1. / 6. +
-                   s2 * (3. / 40. +
-                         s2 * (-5. / 112. +
-                               s2 * (35. / 1152. +
-                                     s2 * (-63. / 2816. +
-                                           s2 * (231. / 13312. +
-                                                 s2 * (-143. / 10240. +
-                                                       s2 * 6435. /
-                                                         557056.))))))) :
-           std::asinh(s) / s);
-      const double u = s * psi;
+      const V s   = lane_sqrt(s2);
+      const V psi = lane_asinh_ratio(s, s2);
+      Itd         = 0.5 * s * psi;
 
-      const double inv_2rt = 0.5 / (std::abs(J) * std::sqrt(I4));
-      const double zeta    = (I1 * I4 - I5) * inv_2rt;
-      const double half_z  = 0.5 * zeta;
+      const V inv_2rt = 0.5 / (lane_abs(J) * lane_sqrt(I4));
+      const V zeta    = (I1 * I4 - I5) * inv_2rt;
+      const V half_z  = 0.5 * zeta;
       // d zeta / dC, entry by entry (M = e_x, CM = first column of C).
-      const double dz00 =
-        (I4 + I1 - 2. * C[0]) * inv_2rt - half_z * (Ci00 + inv_I4);
-      const double dz01 = (-C[1]) * inv_2rt - half_z * Ci01;
-      const double dz02 = (-C[2]) * inv_2rt - half_z * Ci02;
-      const double dz11 = I4 * inv_2rt - half_z * Ci11;
-      const double dz12 = -half_z * Ci12;
-      const double dz22 = I4 * inv_2rt - half_z * Ci22;
+      const V dz00 = (I4 + I1 - 2. * C[0]) * inv_2rt - half_z * (Ci00 + inv_I4);
+      const V dz01 = (-C[1]) * inv_2rt - half_z * Ci01;
+      const V dz02 = (-C[2]) * inv_2rt - half_z * Ci02;
+      const V dz11 = I4 * inv_2rt - half_z * Ci11;
+      const V dz12 = -half_z * Ci12;
+      const V dz22 = I4 * inv_2rt - half_z * Ci22;
 
-      const double a = 0.5 * gp;
-      const double b = 0.5 * k_td * psi;
-      S[0]           = k_e * Ie * inv_I4 + a * (Ci00 - inv_I4) + b * dz00;
+      const V a = 0.5 * gp;
+      const V b = (0.5 * k_td) * psi;
+      S[0]      = k_e * Ie * inv_I4 + a * (Ci00 - inv_I4) + b * dz00;
       S[1] = S[3] = a * Ci01 + b * dz01;
       S[2] = S[6] = a * Ci02 + b * dz02;
       S[4]        = a * Ci11 + b * dz11;
       S[5] = S[7] = a * Ci12 + b * dz12;
       S[8]        = a * Ci22 + b * dz22;
 
-      inv.elongation = Ie;
-      inv.compaction = Itc;
-      inv.distortion = 0.5 * u;
       return 0.5 * k_e * Ie * Ie + k_tc * pow_pm1 * a_tc +
-             0.5 * k_td * inv.distortion * inv.distortion;
+             0.5 * k_td * Itd * Itd;
+    }
+
+
+#pragma GCC diagnostic pop
+
+    template <typename V>
+    inline V
+    CharmetantLaw::stress_kernel(const V (&F)[9],
+                                 V (&P)[9],
+                                 V &Ie,
+                                 V &Itc,
+                                 V &Itd) const
+    {
+      V C[9], S[9];
+      const V J = internal::right_cauchy_green(F, C);
+      const V W = second_piola_kernel(C, J, S, Ie, Itc, Itd);
+      internal::first_piola(F, S, P);
+      return W;
+    }
+
+
+    inline double
+    CharmetantLaw::second_piola(const Matrix3 &C,
+                                const double J,
+                                Matrix3 &S,
+                                Invariants &inv) const
+    {
+      return second_piola_kernel(C,
+                                 J,
+                                 S,
+                                 inv.elongation,
+                                 inv.compaction,
+                                 inv.distortion);
     }
 
 
     inline double
     CharmetantLaw::stress(const Matrix3 &F, Matrix3 &P, Invariants &inv) const
     {
-      Matrix3 C, S;
-      const double J = internal::right_cauchy_green(F, C);
-      const double W = second_piola(C, J, S, inv);
-      internal::first_piola(F, S, P);
-      return W;
+      return stress_kernel(F,
+                           P,
+                           inv.elongation,
+                           inv.compaction,
+                           inv.distortion);
     }
 
 
