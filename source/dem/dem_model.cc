@@ -115,7 +115,20 @@ namespace YarnImpact
           return static_cast<unsigned long>(nf_whole) * n_whole_stations;
         }
 
+        /** Counters for the benchmark and the set-up report. */
+        std::string
+        statistics() const
+        {
+          std::ostringstream s;
+          s << "rebuilds " << n_rebuilds << " in " << step_count
+            << " force evaluations (rank " << rank << "), listed pairs "
+            << pairs.size() << ", last bound terms r " << last_r << " g "
+            << last_g << " m";
+          return s.str();
+        }
+
       private:
+        double last_r = 0., last_g = 0.;
         // --- set-up data ---------------------------------------------------
         const YarnImpact::Parameters::Shared shared;
         const Parameters                     prm;
@@ -294,8 +307,10 @@ namespace YarnImpact
           if (!z_sym || centres.z[a] >= 0.)
             {
               const bool on_plane = z_sym && centres.z[a] == 0.;
-              fy.push_back(centres.y[a]);
-              fz.push_back(centres.z[a]);
+              // Touching neighbours get a gap of 1e-9 d, so that they do not
+              // start as contacts with round-off overlaps.
+              fy.push_back(centres.y[a] * (1. + 1e-9));
+              fz.push_back(centres.z[a] * (1. + 1e-9));
               fw.push_back(on_plane ? 0.5 : 1.);
               zmask.push_back(on_plane ? 0. : 1.);
             }
@@ -660,6 +675,8 @@ namespace YarnImpact
           }
         // Rounding of the single-precision build positions.
         const double margin = 8. * 6e-8 * shared.yarn.length;
+        last_r = std::sqrt(r2_max);
+        last_g = g;
         const double bound =
           2. * std::sqrt(r2_max) + 2. * g + (z_sym ? 2. * dz : 0.) + margin;
         // New reference: the mean displacement of each bin.
@@ -778,8 +795,6 @@ namespace YarnImpact
         for (std::size_t i = 0; i < n_local; ++i)
           {
             const std::uint32_t b  = bin_of[i];
-            const unsigned int  si = station_of(i);
-            const unsigned int  fi = i % nf;
             const double xi = pos[3 * i], yi = pos[3 * i + 1],
                          zi = pos[3 * i + 2];
             for (std::uint32_t bb = b; bb <= b + 1 && bb < n_bins; ++bb)
@@ -808,12 +823,8 @@ namespace YarnImpact
                             continue;
                           if (!owned(i) && !owned(j))
                             continue;
-                          if (j % nf == fi)
-                            {
-                              const unsigned int sj = station_of(j);
-                              if (sj + 1 >= si && sj <= si + 1)
-                                continue; // chain neighbours
-                            }
+                          if (j == i + nf || j + nf == i)
+                            continue; // chain neighbours
                           const double ex = xi - pos[3 * j],
                                        ey = yi - pos[3 * j + 1],
                                        ez = zi - pos[3 * j + 2];
@@ -851,18 +862,14 @@ namespace YarnImpact
             std::sort(row, row + n, [](const Pair &a, const Pair &b) {
               return a.j < b.j;
             });
-            const unsigned int si = station_of(i), fi = i % nf;
-            for (std::uint32_t k = 0; k < n; ++k)
-              {
-                const std::size_t  j  = row[k].j;
-                const unsigned int sj = station_of(j), fj = j % nf;
-                double             w  = 1.;
-                if (x_sym && si == 0 && sj == 0)
-                  w *= 0.5;
-                if (zmask[fi] == 0. && zmask[fj] == 0.)
-                  w *= 0.5;
-                row[k].w = static_cast<float>(w);
-              }
+            if (x_sym && lo == 0 && i < nf)
+              for (std::uint32_t k = 0; k < n; ++k)
+                if (row[k].j < nf)
+                  row[k].w *= 0.5f; // both on the plane x = 0
+            if (z_sym && zmask[i % nf] == 0.)
+              for (std::uint32_t k = 0; k < n; ++k)
+                if (zmask[row[k].j % nf] == 0.)
+                  row[k].w *= 0.5f; // both on the plane z = 0
             if (!have_old)
               continue;
             // Merge with the old row.
@@ -1364,6 +1371,14 @@ namespace YarnImpact
         return base.str() + ".pvtu";
       }
     } // namespace
+
+
+    std::string
+    statistics(const ImpactModel &model)
+    {
+      const auto *m = dynamic_cast<const Model *>(&model);
+      return m ? m->statistics() : std::string();
+    }
 
 
     std::unique_ptr<ImpactModel>

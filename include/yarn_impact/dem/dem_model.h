@@ -74,6 +74,11 @@ namespace YarnImpact
     create_model(const YarnImpact::Parameters::Shared &shared,
                  const Parameters                     &parameters,
                  const MPI_Comm                        communicator);
+
+    /** Neighbour-list statistics of a DEM model (rebuilds, pairs), for the
+     * benchmark; empty for another model. */
+    std::string
+    statistics(const ImpactModel &model);
   } // namespace DEM
 } // namespace YarnImpact
 
