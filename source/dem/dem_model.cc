@@ -284,7 +284,8 @@ namespace YarnImpact
                                d,
                                y.thickness_semi_axis,
                                y.width_semi_axis,
-                               prm.max_packing_scale));
+                               prm.max_packing_scale,
+                               z_sym));
         packing_scale = centres.scale;
         nf_whole      = centres.size();
         if (z_sym)

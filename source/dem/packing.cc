@@ -17,7 +17,8 @@ namespace YarnImpact
                       const double       d,
                       const double       a_y,
                       const double       a_z,
-                      const double       max_scale)
+                      const double       max_scale,
+                      const bool         symmetric_z)
     {
       const double h = 0.5 * std::sqrt(3.) * d; // row distance
       // Enough rows and columns to hold the ellipse enlarged by max_scale.
@@ -55,13 +56,45 @@ namespace YarnImpact
             << max_scale;
           Parameters::require(false, "Yarn/Number of fibres", s.str());
         }
+      // With symmetric_z, take the closest sites, but never one half of a
+      // mirror pair
+      // (y, -z), (y, z): when one slot is left, the next site on z = 0 fills
+      // it, so that the layout stays symmetric about z = 0 (quarter
+      // symmetry) whenever such a site exists.
       FibreCentres result;
-      result.scale = std::max(1., sites[n - 1].rho);
-      for (unsigned int k = 0; k < n; ++k)
+      double       rho_max = 0.;
+      const auto   take    = [&](const Site &site) {
+        result.y.push_back(site.y);
+        result.z.push_back(site.z);
+        rho_max = std::max(rho_max, site.rho);
+      };
+      for (std::size_t k = 0;
+           symmetric_z && k < sites.size() && result.size() < n;
+           ++k)
         {
-          result.y.push_back(sites[k].y);
-          result.z.push_back(sites[k].z);
+          const Site &site = sites[k];
+          if (site.z == 0.)
+            take(site);
+          else if (site.z < 0. && k + 1 < sites.size() &&
+                   sites[k + 1].y == site.y && sites[k + 1].z == -site.z)
+            {
+              if (n - result.size() >= 2)
+                {
+                  take(site);
+                  take(sites[k + 1]);
+                }
+              ++k;
+            }
         }
+      if (result.size() < n)
+        {
+          // No symmetric choice: the n closest sites.
+          result  = FibreCentres();
+          rho_max = 0.;
+          for (unsigned int k = 0; k < n; ++k)
+            take(sites[k]);
+        }
+      result.scale = std::max(1., rho_max);
       return result;
     }
 

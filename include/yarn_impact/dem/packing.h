@@ -31,7 +31,10 @@ namespace YarnImpact
      * whenever the count allows it) inside the ellipse
      * \f$(y/a_y)^2 + (z/a_z)^2 \le s^2\f$, with the smallest scale
      * \f$s \ge 1\f$ that holds @p n of them. The centres closest to the
-     * ellipse's centre (in the ellipse norm) are taken.
+     * ellipse's centre (in the ellipse norm) are taken; with
+     * @p symmetric_z, a mirror pair \f$(y,\pm z)\f$ is never split (the
+     * last slot goes to the next centre on z = 0), so the layout is
+     * symmetric about z = 0 whenever possible (quarter symmetry).
      * @throw InputError if @p s would exceed @p max_scale
      */
     FibreCentres
@@ -39,7 +42,8 @@ namespace YarnImpact
                       const double       d,
                       const double       a_y,
                       const double       a_z,
-                      const double       max_scale);
+                      const double       max_scale,
+                      const bool         symmetric_z = false);
 
     /**
      * Read fibre centres, one `y z` pair per line [m]; blank lines and text
