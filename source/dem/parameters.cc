@@ -140,7 +140,9 @@ namespace YarnImpact
               "DEM/Projectile friction coefficient",
               "must not be negative");
       skin         = get_positive_double(prm, "DEM", "Skin");
-      coordination = prm.get_integer("Coordination number");
+      const long c = prm.get_integer("Coordination number");
+      require(c >= 0, "DEM/Coordination number", "must not be negative");
+      coordination = static_cast<unsigned int>(c);
       ghost_stations = get_positive_integer(prm, "DEM", "Ghost stations");
       prm.leave_subsection();
     }
