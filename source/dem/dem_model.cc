@@ -29,7 +29,7 @@ namespace YarnImpact
     namespace
     {
       using dealii::numbers::PI;
-      using Symmetry = YarnImpact::Parameters::Symmetry;
+      using Symmetry            = YarnImpact::Parameters::Symmetry;
       constexpr double infinity = std::numeric_limits<double>::infinity();
 
       /** A listed sphere pair; a negative weight marks an active contact
@@ -37,7 +37,7 @@ namespace YarnImpact
       struct Pair
       {
         std::uint32_t j;
-        float         w;
+        float w;
       };
 
       /** A pair of a sphere with the mirror image (in z = 0) of another one,
@@ -45,8 +45,8 @@ namespace YarnImpact
       struct MirrorPair
       {
         std::uint32_t i, j;
-        float         w;
-        bool          active;
+        float w;
+        bool active;
       };
 
 
@@ -54,8 +54,8 @@ namespace YarnImpact
       {
       public:
         Model(const YarnImpact::Parameters::Shared &shared,
-              const Parameters                     &parameters,
-              const MPI_Comm                        communicator);
+              const Parameters &parameters,
+              const MPI_Comm communicator);
 
         std::string
         name() const override
@@ -107,7 +107,7 @@ namespace YarnImpact
         std::string
         write_snapshot(const std::string &directory,
                        const unsigned int index,
-                       const double       time) const override;
+                       const double time) const override;
 
         unsigned long
         n_elements() const override
@@ -131,66 +131,68 @@ namespace YarnImpact
         double last_r = 0., last_g = 0.;
         // --- set-up data ---------------------------------------------------
         const YarnImpact::Parameters::Shared shared;
-        const Parameters                     prm;
-        const MPI_Comm                       comm;
-        const unsigned int                   rank, n_ranks;
-        const Symmetry                       symmetry;
-        const bool                           x_sym, z_sym;
-        const double                         factor;
+        const Parameters prm;
+        const MPI_Comm comm;
+        const unsigned int rank, n_ranks;
+        const Symmetry symmetry;
+        const bool x_sym, z_sym;
+        const double factor;
 
-        unsigned int nf = 0;   // modelled fibres
-        unsigned int nf_whole = 0;
-        unsigned int n_st = 0; // modelled stations (cross-sections)
+        unsigned int nf               = 0; // modelled fibres
+        unsigned int nf_whole         = 0;
+        unsigned int n_st             = 0; // modelled stations (cross-sections)
         unsigned int n_whole_stations = 0;
-        unsigned int s_impact = 0; // station at x = 0
-        unsigned int n_prof   = 0; // stations of the folded profile
-        double       d = 0., radius = 0., L0 = 0., sphere_mass = 0.,
-               truss_k = 0., fibre_area = 0., cutoff = 0.;
+        unsigned int s_impact         = 0; // station at x = 0
+        unsigned int n_prof           = 0; // stations of the folded profile
+        double d = 0., radius = 0., L0 = 0., sphere_mass = 0., truss_k = 0.,
+               fibre_area = 0., cutoff = 0.;
         double packing_scale = 1.;
 
         std::vector<double> fy, fz, fw, finv, zmask; // per fibre
         std::vector<double> sx0, sw, sinv, xmask;    // per station
 
-        ContactLaw   fibre_law, projectile_law;
-        double       critical_step = 0.;
-        double       total_mass    = 0.;
-        double       failure_strain;
-        bool         failure;
+        ContactLaw fibre_law, projectile_law;
+        double critical_step = 0.;
+        double total_mass    = 0.;
+        double failure_strain;
+        bool failure;
 
         // --- decomposition ---------------------------------------------------
         unsigned int st_begin = 0, st_end = 0, lo = 0, hi = 0;
-        std::size_t  n_local = 0, own_b = 0, own_e = 0;
+        std::size_t n_local = 0, own_b = 0, own_e = 0;
 
-        // --- state (local spheres, cross-section-major) ------------------------
-        std::vector<double>        pos, vel, frc;
-        std::vector<float>         pos_build;
+        // --- state (local spheres, cross-section-major)
+        // ------------------------
+        std::vector<double> pos, vel, frc;
+        std::vector<float> pos_build;
         std::vector<std::uint32_t> bin_of;
-        std::vector<std::uint8_t>  broken; // truss (s, s+1) of each sphere
-        std::vector<double>        xi_p;   // projectile tangential history
+        std::vector<std::uint8_t> broken; // truss (s, s+1) of each sphere
+        std::vector<double> xi_p;         // projectile tangential history
         std::vector<std::uint64_t> proj_step;
-        double                     pending_kick = 0.;
-        bool                       forces_consumed = true;
-        std::uint64_t              step_count      = 0;
-        mutable bool               cut_through     = false;
+        double pending_kick      = 0.;
+        bool forces_consumed     = true;
+        std::uint64_t step_count = 0;
+        mutable bool cut_through = false;
 
         // Per-station extents of the owned stations (from the last drift).
         std::vector<double> st_xlo, st_xhi, st_ymax;
         std::vector<double> extent_buffer;
 
-        // --- neighbour lists ---------------------------------------------------
+        // --- neighbour lists
+        // ---------------------------------------------------
         std::vector<std::uint32_t> pstart, pstart_old;
-        std::vector<Pair>          pairs, pairs_old;
-        std::vector<double>        pxi, pxi_old;
-        std::vector<MirrorPair>    mpairs, mpairs_old;
-        std::vector<double>        mxi, mxi_old;
+        std::vector<Pair> pairs, pairs_old;
+        std::vector<double> pxi, pxi_old;
+        std::vector<MirrorPair> mpairs, mpairs_old;
+        std::vector<double> mxi, mxi_old;
 
         // Bins along x (the build frame) and the rebuild criterion.
-        double                     bin_x0 = 0., bin_h = 1.;
-        unsigned int               n_bins = 0;
+        double bin_x0 = 0., bin_h = 1.;
+        unsigned int n_bins = 0;
         std::vector<std::uint32_t> bin_count;
-        std::vector<double>        D_prev, D_sum;
-        double                     r2_max = 0.;
-        unsigned long              n_rebuilds = 0;
+        std::vector<double> D_prev, D_sum;
+        double r2_max            = 0.;
+        unsigned long n_rebuilds = 0;
 
         // Scratch of the rebuild (kept to avoid reallocation).
         std::vector<std::uint32_t> bin_start, bin_sphere, cell_off, cell_start,
@@ -199,7 +201,8 @@ namespace YarnImpact
         std::vector<std::uint32_t> bin_ny, bin_nz;
         std::vector<std::pair<std::uint32_t, std::uint32_t>> found;
 
-        // --- energy accounting (local) ----------------------------------------
+        // --- energy accounting (local)
+        // ----------------------------------------
         double dissipated_local = 0.;
         double last_yc = 0., last_Rr = 0.;
 
@@ -207,7 +210,8 @@ namespace YarnImpact
         std::vector<double> initial_width;
         mutable std::vector<double> profile_buffer;
 
-        // --- helpers -----------------------------------------------------------
+        // --- helpers
+        // -----------------------------------------------------------
         std::size_t
         local_index(const unsigned int s, const unsigned int f) const
         {
@@ -249,8 +253,8 @@ namespace YarnImpact
 
 
       Model::Model(const YarnImpact::Parameters::Shared &shared,
-                   const Parameters                     &parameters,
-                   const MPI_Comm                        communicator)
+                   const Parameters &parameters,
+                   const MPI_Comm communicator)
         : shared(shared)
         , prm(parameters)
         , comm(communicator)
@@ -273,21 +277,20 @@ namespace YarnImpact
                 "fibres pass between the spheres of another fibre");
 
         // Fibre centres.
-        FibreCentres centres =
-          (prm.layout == FibreLayout::file ?
-             read_fibre_file(prm.fibre_file,
-                             y.n_fibres,
-                             d,
-                             y.thickness_semi_axis,
-                             y.width_semi_axis) :
-             hexagonal_packing(y.n_fibres,
-                               d,
-                               y.thickness_semi_axis,
-                               y.width_semi_axis,
-                               prm.max_packing_scale,
-                               z_sym));
-        packing_scale = centres.scale;
-        nf_whole      = centres.size();
+        FibreCentres centres = (prm.layout == FibreLayout::file
+                                  ? read_fibre_file(prm.fibre_file,
+                                                    y.n_fibres,
+                                                    d,
+                                                    y.thickness_semi_axis,
+                                                    y.width_semi_axis)
+                                  : hexagonal_packing(y.n_fibres,
+                                                      d,
+                                                      y.thickness_semi_axis,
+                                                      y.width_semi_axis,
+                                                      prm.max_packing_scale,
+                                                      z_sym));
+        packing_scale        = centres.scale;
+        nf_whole             = centres.size();
         if (z_sym)
           {
             // The layout must be its own mirror image in z = 0.
@@ -295,8 +298,7 @@ namespace YarnImpact
               {
                 bool mirrored = (centres.z[a] == 0.);
                 for (unsigned int b = 0; b < nf_whole && !mirrored; ++b)
-                  mirrored = std::abs(centres.y[b] - centres.y[a]) <
-                               1e-9 * d &&
+                  mirrored = std::abs(centres.y[b] - centres.y[a]) < 1e-9 * d &&
                              std::abs(centres.z[b] + centres.z[a]) < 1e-9 * d;
                 require(mirrored,
                         "Symmetry",
@@ -329,9 +331,9 @@ namespace YarnImpact
         s_impact         = x_sym ? 0 : n_seg / 2;
         for (unsigned int s = 0; s < n_st; ++s)
           {
-            const double x = x_sym ? s * L0 : -0.5 * y.length + s * L0;
-            const bool   plane   = x_sym && s == 0;
-            const bool   clamped = (s == n_st - 1) || (!x_sym && s == 0);
+            const double x     = x_sym ? s * L0 : -0.5 * y.length + s * L0;
+            const bool plane   = x_sym && s == 0;
+            const bool clamped = (s == n_st - 1) || (!x_sym && s == 0);
             sx0.push_back(x);
             sw.push_back(plane ? 0.5 : 1.);
             sinv.push_back(clamped ? 0. : (plane ? 2. : 1.));
@@ -347,8 +349,8 @@ namespace YarnImpact
 
         // Contact laws (doc/dem.md): c = 2 zeta sqrt(m_eff k).
         fibre_law.k_n = prm.normal_stiffness_ratio * truss_k;
-        fibre_law.c_n = 2. * prm.damping_ratio *
-                        std::sqrt(0.5 * sphere_mass * fibre_law.k_n);
+        fibre_law.c_n =
+          2. * prm.damping_ratio * std::sqrt(0.5 * sphere_mass * fibre_law.k_n);
         fibre_law.k_t      = prm.tangential_stiffness_ratio * fibre_law.k_n;
         fibre_law.mu       = prm.friction;
         projectile_law.k_n = prm.projectile_stiffness_ratio * truss_k;
@@ -361,10 +363,10 @@ namespace YarnImpact
         // Stable step (physics.md 4.1): Gershgorin bound of a sphere with
         // two trusses, `coordination` fibre contacts and the projectile,
         // reduced for the contact damping.
-        const double omega2 =
-          2. * (2. * truss_k + prm.coordination * fibre_law.k_n +
-                projectile_law.k_n) /
-          sphere_mass;
+        const double omega2 = 2. *
+                              (2. * truss_k + prm.coordination * fibre_law.k_n +
+                               projectile_law.k_n) /
+                              sphere_mass;
         const double zeta =
           std::max(prm.damping_ratio, prm.projectile_damping_ratio);
         critical_step =
@@ -378,13 +380,12 @@ namespace YarnImpact
 
         // Slabs of stations.
         const unsigned int G = prm.ghost_stations;
-        st_begin             = static_cast<unsigned int>(
-          static_cast<unsigned long>(n_st) * rank / n_ranks);
-        st_end = static_cast<unsigned int>(static_cast<unsigned long>(n_st) *
+        st_begin = static_cast<unsigned int>(static_cast<unsigned long>(n_st) *
+                                             rank / n_ranks);
+        st_end   = static_cast<unsigned int>(static_cast<unsigned long>(n_st) *
                                            (rank + 1) / n_ranks);
         const bool enough =
-          n_ranks == 1 ||
-          static_cast<unsigned long>(n_st) / n_ranks >= G + 1;
+          n_ranks == 1 || static_cast<unsigned long>(n_st) / n_ranks >= G + 1;
         require(enough,
                 "DEM/Ghost stations",
                 "= " + std::to_string(G) + " is too large for " +
@@ -448,8 +449,7 @@ namespace YarnImpact
                 zmin = std::min(zmin, fz[f]);
                 zmax = std::max(zmax, fz[f]);
               }
-            const unsigned int k =
-              (s > s_impact ? s - s_impact : s_impact - s);
+            const unsigned int k = (s > s_impact ? s - s_impact : s_impact - s);
             initial_width[k] =
               std::max(initial_width[k], z_sym ? 2. * zmax : zmax - zmin);
           }
@@ -465,12 +465,11 @@ namespace YarnImpact
           {
             unsigned long n_pairs = pairs.size();
             out << std::setprecision(5) << "[dem] " << nf_whole
-                << " fibres (hexagonal packing scale " << packing_scale
-                << "), " << n_whole_stations << " spheres per fibre, spacing "
-                << L0 * 1e6 << " um; modelled: " << nf << " fibres x "
-                << n_st << " cross-sections = "
-                << static_cast<unsigned long>(nf) * n_st << " spheres on "
-                << n_ranks << " rank(s)\n"
+                << " fibres (hexagonal packing scale " << packing_scale << "), "
+                << n_whole_stations << " spheres per fibre, spacing "
+                << L0 * 1e6 << " um; modelled: " << nf << " fibres x " << n_st
+                << " cross-sections = " << static_cast<unsigned long>(nf) * n_st
+                << " spheres on " << n_ranks << " rank(s)\n"
                 << "[dem] sphere mass " << sphere_mass << " kg, truss "
                 << "stiffness " << truss_k << " N/m, contact stiffness "
                 << fibre_law.k_n << " N/m (projectile " << projectile_law.k_n
@@ -500,14 +499,14 @@ namespace YarnImpact
       inline void
       Model::accumulate_criterion(const std::size_t i)
       {
-        const std::uint32_t b  = bin_of[i];
-        const double        dx = pos[3 * i] - pos_build[3 * i];
-        const double        dy = pos[3 * i + 1] - pos_build[3 * i + 1];
-        const double        dz = pos[3 * i + 2] - pos_build[3 * i + 2];
-        const double        rx = dx - D_prev[3 * b];
-        const double        ry = dy - D_prev[3 * b + 1];
-        const double        rz = dz - D_prev[3 * b + 2];
-        r2_max = std::max(r2_max, rx * rx + ry * ry + rz * rz);
+        const std::uint32_t b = bin_of[i];
+        const double dx       = pos[3 * i] - pos_build[3 * i];
+        const double dy       = pos[3 * i + 1] - pos_build[3 * i + 1];
+        const double dz       = pos[3 * i + 2] - pos_build[3 * i + 2];
+        const double rx       = dx - D_prev[3 * b];
+        const double ry       = dy - D_prev[3 * b + 1];
+        const double rz       = dz - D_prev[3 * b + 2];
+        r2_max                = std::max(r2_max, rx * rx + ry * ry + rz * rz);
         D_sum[3 * b] += dx;
         D_sum[3 * b + 1] += dy;
         D_sum[3 * b + 2] += dz;
@@ -517,22 +516,21 @@ namespace YarnImpact
       void
       Model::drift(const double dt)
       {
-        const double kick = pending_kick;
-        pending_kick      = 0.;
+        const double kick    = pending_kick;
+        pending_kick         = 0.;
         double *__restrict x = pos.data();
         double *__restrict v = vel.data();
         double *__restrict F = frc.data();
         for (unsigned int s = st_begin; s < st_end; ++s)
           {
-            const double      as  = kick * sinv[s];
-            const double      xm  = xmask[s];
-            const std::size_t b0  = local_index(s, 0);
-            double            xlo = infinity, xhi = -infinity,
-                   ymax = -infinity;
+            const double as      = kick * sinv[s];
+            const double xm      = xmask[s];
+            const std::size_t b0 = local_index(s, 0);
+            double xlo = infinity, xhi = -infinity, ymax = -infinity;
             for (unsigned int f = 0; f < nf; ++f)
               {
                 const std::size_t i = b0 + f;
-                const double      a = as * finv[f];
+                const double a      = as * finv[f];
                 v[3 * i] += a * xm * F[3 * i];
                 v[3 * i + 1] += a * F[3 * i + 1];
                 v[3 * i + 2] += a * zmask[f] * F[3 * i + 2];
@@ -558,24 +556,44 @@ namespace YarnImpact
       {
         if (n_ranks == 1)
           return;
-        MPI_Request  requests[4];
+        MPI_Request requests[4];
         unsigned int n = 0;
-        const int    tag = 71;
+        const int tag  = 71;
         if (rank > 0)
           {
             const std::size_t count = 3ul * (st_begin - lo) * nf;
-            MPI_Irecv(v.data(), count, MPI_DOUBLE, rank - 1, tag, comm,
+            MPI_Irecv(v.data(),
+                      count,
+                      MPI_DOUBLE,
+                      rank - 1,
+                      tag,
+                      comm,
                       &requests[n++]);
-            MPI_Isend(v.data() + 3 * own_b, count, MPI_DOUBLE, rank - 1, tag,
-                      comm, &requests[n++]);
+            MPI_Isend(v.data() + 3 * own_b,
+                      count,
+                      MPI_DOUBLE,
+                      rank - 1,
+                      tag,
+                      comm,
+                      &requests[n++]);
           }
         if (rank + 1 < n_ranks)
           {
             const std::size_t count = 3ul * (hi - st_end) * nf;
-            MPI_Irecv(v.data() + 3 * own_e, count, MPI_DOUBLE, rank + 1, tag,
-                      comm, &requests[n++]);
-            MPI_Isend(v.data() + 3 * (own_e - count / 3), count, MPI_DOUBLE,
-                      rank + 1, tag, comm, &requests[n++]);
+            MPI_Irecv(v.data() + 3 * own_e,
+                      count,
+                      MPI_DOUBLE,
+                      rank + 1,
+                      tag,
+                      comm,
+                      &requests[n++]);
+            MPI_Isend(v.data() + 3 * (own_e - count / 3),
+                      count,
+                      MPI_DOUBLE,
+                      rank + 1,
+                      tag,
+                      comm,
+                      &requests[n++]);
           }
         MPI_Waitall(n, requests, MPI_STATUSES_IGNORE);
       }
@@ -587,7 +605,7 @@ namespace YarnImpact
         // Global x-extent of every cross-section. Everything below is
         // evaluated identically on all ranks, so a failure is collective.
         const std::vector<double> *lo_x = &st_xlo, *hi_x = &st_xhi;
-        std::vector<double>        glo, ghi;
+        std::vector<double> glo, ghi;
         if (n_ranks > 1)
           {
             extent_buffer.assign(2 * n_st, infinity);
@@ -596,8 +614,12 @@ namespace YarnImpact
                 extent_buffer[s]        = st_xlo[s];
                 extent_buffer[n_st + s] = -st_xhi[s];
               }
-            MPI_Allreduce(MPI_IN_PLACE, extent_buffer.data(), 2 * n_st,
-                          MPI_DOUBLE, MPI_MIN, comm);
+            MPI_Allreduce(MPI_IN_PLACE,
+                          extent_buffer.data(),
+                          2 * n_st,
+                          MPI_DOUBLE,
+                          MPI_MIN,
+                          comm);
             glo.assign(extent_buffer.begin(), extent_buffer.begin() + n_st);
             ghi.resize(n_st);
             for (unsigned int s = 0; s < n_st; ++s)
@@ -628,7 +650,7 @@ namespace YarnImpact
               static_cast<unsigned long>(n_st) * (q + 1) / n_ranks);
             const unsigned int l = (q == 0 ? 0 : b - G);
             const unsigned int h = (q + 1 == n_ranks ? n_st : e + G);
-            double             Xlo = infinity, Xhi = -infinity;
+            double Xlo = infinity, Xhi = -infinity;
             for (unsigned int s = b; s < e; ++s)
               {
                 Xlo = std::min(Xlo, (*lo_x)[s]);
@@ -659,7 +681,7 @@ namespace YarnImpact
         // unlisted pair can touch while 2 r + 2 g (+ 2 max|D_b,z| for mirror
         // pairs) < skin.
         double g = 0., dz = 0.;
-        int    prev = -1;
+        int prev = -1;
         for (unsigned int b = 0; b < n_bins; ++b)
           {
             if (bin_count[b] == 0)
@@ -676,8 +698,8 @@ namespace YarnImpact
           }
         // Rounding of the single-precision build positions.
         const double margin = 8. * 6e-8 * shared.yarn.length;
-        last_r = std::sqrt(r2_max);
-        last_g = g;
+        last_r              = std::sqrt(r2_max);
+        last_g              = g;
         const double bound =
           2. * std::sqrt(r2_max) + 2. * g + (z_sym ? 2. * dz : 0.) + margin;
         // New reference: the mean displacement of each bin.
@@ -712,9 +734,10 @@ namespace YarnImpact
         r2_max = 0.;
         for (std::size_t i = 0; i < n_local; ++i)
           {
-            const auto b = std::min<std::uint32_t>(
-              static_cast<std::uint32_t>((pos[3 * i] - xmin) / bin_h),
-              n_bins - 1);
+            const auto b =
+              std::min<std::uint32_t>(static_cast<std::uint32_t>(
+                                        (pos[3 * i] - xmin) / bin_h),
+                                      n_bins - 1);
             bin_of[i] = b;
             ++bin_count[b];
             for (unsigned int c = 0; c < 3; ++c)
@@ -740,8 +763,7 @@ namespace YarnImpact
         cell_off.assign(n_bins + 1, 0);
         for (unsigned int b = 0; b < n_bins; ++b)
           {
-            double y0 = infinity, y1 = -infinity, z0 = infinity,
-                   z1 = -infinity;
+            double y0 = infinity, y1 = -infinity, z0 = infinity, z1 = -infinity;
             for (std::uint32_t k = bin_start[b]; k < bin_start[b + 1]; ++k)
               {
                 const std::size_t i = bin_sphere[k];
@@ -764,20 +786,20 @@ namespace YarnImpact
             bin_nz[b]       = static_cast<std::uint32_t>((z1 - z0) / c) + 1;
             cell_off[b + 1] = cell_off[b] + bin_ny[b] * bin_nz[b];
           }
-        const std::uint32_t n_cells = cell_off[n_bins];
+        const std::uint32_t n_cells         = cell_off[n_bins];
         std::vector<std::uint32_t> &cell_of = near_sphere; // scratch
         cell_of.resize(n_local);
         cell_start.assign(n_cells + 1, 0);
         for (std::size_t i = 0; i < n_local; ++i)
           {
             const std::uint32_t b = bin_of[i];
-            const auto          cy = static_cast<std::uint32_t>(
+            const auto cy         = static_cast<std::uint32_t>(
               (pos[3 * i + 1] - bin_y0[b]) * bin_ic[b]);
             const auto cz = static_cast<std::uint32_t>(
               (pos[3 * i + 2] - bin_z0[b]) * bin_ic[b]);
-            const std::uint32_t c =
-              cell_off[b] + std::min(cy, bin_ny[b] - 1) * bin_nz[b] +
-              std::min(cz, bin_nz[b] - 1);
+            const std::uint32_t c = cell_off[b] +
+                                    std::min(cy, bin_ny[b] - 1) * bin_nz[b] +
+                                    std::min(cz, bin_nz[b] - 1);
             cell_of[i] = c;
             ++cell_start[c + 1];
           }
@@ -795,17 +817,17 @@ namespace YarnImpact
         found.clear();
         for (std::size_t i = 0; i < n_local; ++i)
           {
-            const std::uint32_t b  = bin_of[i];
+            const std::uint32_t b = bin_of[i];
             const double xi = pos[3 * i], yi = pos[3 * i + 1],
                          zi = pos[3 * i + 2];
             for (std::uint32_t bb = b; bb <= b + 1 && bb < n_bins; ++bb)
               {
                 if (bin_count[bb] == 0)
                   continue;
-                const long cy = static_cast<long>(
-                  std::floor((yi - bin_y0[bb]) * bin_ic[bb]));
-                const long cz = static_cast<long>(
-                  std::floor((zi - bin_z0[bb]) * bin_ic[bb]));
+                const long cy =
+                  static_cast<long>(std::floor((yi - bin_y0[bb]) * bin_ic[bb]));
+                const long cz =
+                  static_cast<long>(std::floor((zi - bin_z0[bb]) * bin_ic[bb]));
                 const long ny = bin_ny[bb], nz = bin_nz[bb];
                 for (long a = std::max(0l, cy - 1);
                      a <= std::min(ny - 1, cy + 1);
@@ -858,7 +880,7 @@ namespace YarnImpact
         const bool have_old = pstart_old.size() == n_local + 1;
         for (std::size_t i = 0; i < n_local; ++i)
           {
-            Pair *row = pairs.data() + pstart[i];
+            Pair *row             = pairs.data() + pstart[i];
             const std::uint32_t n = pstart[i + 1] - pstart[i];
             std::sort(row, row + n, [](const Pair &a, const Pair &b) {
               return a.j < b.j;
@@ -882,7 +904,7 @@ namespace YarnImpact
                 if (q < q_end && pairs_old[q].j == row[k].j &&
                     pairs_old[q].w < 0.f)
                   {
-                    row[k].w = -row[k].w;
+                    row[k].w            = -row[k].w;
                     const std::size_t p = pstart[i] + k;
                     for (unsigned int c = 0; c < 3; ++c)
                       pxi[3 * p + c] = pxi_old[3 * q + c];
@@ -919,9 +941,9 @@ namespace YarnImpact
                   if (ex * ex + ey * ey + ez * ez < cut2)
                     {
                       const double w =
-                        (x_sym && station_of(i) == 0 && station_of(j) == 0 ?
-                           0.5 :
-                           1.);
+                        (x_sym && station_of(i) == 0 && station_of(j) == 0
+                           ? 0.5
+                           : 1.);
                       mpairs.push_back(
                         {static_cast<std::uint32_t>(std::min(i, j)),
                          static_cast<std::uint32_t>(std::max(i, j)),
@@ -929,7 +951,8 @@ namespace YarnImpact
                          false});
                     }
                 }
-            std::sort(mpairs.begin(), mpairs.end(),
+            std::sort(mpairs.begin(),
+                      mpairs.end(),
                       [](const MirrorPair &a, const MirrorPair &b) {
                         return a.i < b.i || (a.i == b.i && a.j < b.j);
                       });
@@ -996,13 +1019,13 @@ namespace YarnImpact
                                      x[3 * j + 1] - x[3 * i + 1],
                                      x[3 * j + 2] - x[3 * i + 2]};
                 const double k    = truss_k * fw[f];
-                double       t[3];
+                double t[3];
                 const double strain = truss_force(e, k, L0, t);
                 if (failure && strain > failure_strain)
                   {
                     broken[i] = 1;
-                    dissipated += own_factor(i, j) * 0.5 * k * strain *
-                                  strain * L0 * L0;
+                    dissipated +=
+                      own_factor(i, j) * 0.5 * k * strain * strain * L0 * L0;
                     continue;
                   }
                 F[3 * i] += t[0];
@@ -1022,33 +1045,33 @@ namespace YarnImpact
             if (p0 == p1)
               continue;
             const double xi = x[3 * i], yi = x[3 * i + 1], zi = x[3 * i + 2];
-            double       fx = 0., fy_ = 0., fz_ = 0.;
+            double fx = 0., fy_ = 0., fz_ = 0.;
             for (std::uint32_t p = p0; p < p1; ++p)
               {
-                const std::size_t j  = pairs[p].j;
-                const double      ex = xi - x[3 * j], ey = yi - x[3 * j + 1],
+                const std::size_t j = pairs[p].j;
+                const double ex = xi - x[3 * j], ey = yi - x[3 * j + 1],
                              ez = zi - x[3 * j + 2];
                 const double r2 = ex * ex + ey * ey + ez * ez;
                 if (r2 >= d2)
                   {
                     if (pairs[p].w < 0.f)
                       {
-                        pairs[p].w      = -pairs[p].w;
-                        pxi[3 * p]      = 0.;
-                        pxi[3 * p + 1]  = 0.;
-                        pxi[3 * p + 2]  = 0.;
+                        pairs[p].w     = -pairs[p].w;
+                        pxi[3 * p]     = 0.;
+                        pxi[3 * p + 1] = 0.;
+                        pxi[3 * p + 2] = 0.;
                       }
                     continue;
                   }
                 if (pairs[p].w > 0.f)
                   pairs[p].w = -pairs[p].w;
-                const double w    = -pairs[p].w;
-                const double dist = std::sqrt(r2);
-                const double n[3] = {ex / dist, ey / dist, ez / dist};
+                const double w     = -pairs[p].w;
+                const double dist  = std::sqrt(r2);
+                const double n[3]  = {ex / dist, ey / dist, ez / dist};
                 const double vr[3] = {v[3 * i] - v[3 * j],
                                       v[3 * i + 1] - v[3 * j + 1],
                                       v[3 * i + 2] - v[3 * j + 2]};
-                double       f[3], diss = 0.;
+                double f[3], diss = 0.;
                 fibre_law.force(d - dist, n, vr, dt, &pxi[3 * p], f, diss);
                 fx += w * f[0];
                 fy_ += w * f[1];
@@ -1066,9 +1089,9 @@ namespace YarnImpact
         // Mirror pairs (quarter symmetry).
         for (std::size_t p = 0; p < mpairs.size(); ++p)
           {
-            MirrorPair       &mp = mpairs[p];
+            MirrorPair &mp      = mpairs[p];
             const std::size_t i = mp.i, j = mp.j;
-            const double      ex = x[3 * i] - x[3 * j],
+            const double ex = x[3 * i] - x[3 * j],
                          ey = x[3 * i + 1] - x[3 * j + 1],
                          ez = x[3 * i + 2] + x[3 * j + 2];
             const double r2 = ex * ex + ey * ey + ez * ez;
@@ -1076,7 +1099,7 @@ namespace YarnImpact
               {
                 if (mp.active)
                   {
-                    mp.active = false;
+                    mp.active  = false;
                     mxi[3 * p] = mxi[3 * p + 1] = mxi[3 * p + 2] = 0.;
                   }
                 continue;
@@ -1087,7 +1110,7 @@ namespace YarnImpact
             const double vr[3] = {v[3 * i] - v[3 * j],
                                   v[3 * i + 1] - v[3 * j + 1],
                                   v[3 * i + 2] + v[3 * j + 2]};
-            double       f[3], diss = 0.;
+            double f[3], diss = 0.;
             fibre_law.force(d - dist, n, vr, dt, &mxi[3 * p], f, diss);
             const double w = mp.w;
             F[3 * i] += w * f[0];
@@ -1106,9 +1129,9 @@ namespace YarnImpact
         const double yc = projectile.axis_position();
         const double vp = projectile.velocity();
         const double Rr = projectile.radius() + radius;
-        double       reaction = 0.;
-        last_yc              = yc;
-        last_Rr              = Rr;
+        double reaction = 0.;
+        last_yc         = yc;
+        last_Rr         = Rr;
         for (unsigned int s = st_begin; s < st_end; ++s)
           {
             const double ax =
@@ -1118,9 +1141,9 @@ namespace YarnImpact
             const std::size_t b0 = local_index(s, 0);
             for (unsigned int f = 0; f < nf; ++f)
               {
-                const std::size_t i  = b0 + f;
-                const double      ex = x[3 * i], ey = x[3 * i + 1] - yc;
-                const double      r2 = ex * ex + ey * ey;
+                const std::size_t i = b0 + f;
+                const double ex = x[3 * i], ey = x[3 * i + 1] - yc;
+                const double r2 = ex * ex + ey * ey;
                 if (r2 >= Rr * Rr)
                   continue;
                 if (proj_step[i] + 1 != step_count)
@@ -1128,11 +1151,12 @@ namespace YarnImpact
                 proj_step[i]       = step_count;
                 const double rho   = std::sqrt(r2);
                 const double n[3]  = {ex / rho, ey / rho, 0.};
-                const double vr[3] = {v[3 * i], v[3 * i + 1] - vp,
+                const double vr[3] = {v[3 * i],
+                                      v[3 * i + 1] - vp,
                                       v[3 * i + 2]};
-                double       fc[3], diss = 0.;
-                projectile_law.force(Rr - rho, n, vr, dt, &xi_p[3 * i], fc,
-                                     diss);
+                double fc[3], diss = 0.;
+                projectile_law
+                  .force(Rr - rho, n, vr, dt, &xi_p[3 * i], fc, diss);
                 const double w = fw[f] * sw[s];
                 F[3 * i] += w * fc[0];
                 F[3 * i + 1] += w * fc[1];
@@ -1152,9 +1176,9 @@ namespace YarnImpact
       Model::truss_strain(const std::size_t i, double *length) const
       {
         const std::size_t j = i + nf;
-        const double      e[3] = {pos[3 * j] - pos[3 * i],
-                             pos[3 * j + 1] - pos[3 * i + 1],
-                             pos[3 * j + 2] - pos[3 * i + 2]};
+        const double e[3]   = {pos[3 * j] - pos[3 * i],
+                               pos[3 * j + 1] - pos[3 * i + 1],
+                               pos[3 * j + 2] - pos[3 * i + 2]};
         const double l = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
         if (length)
           *length = l;
@@ -1188,15 +1212,14 @@ namespace YarnImpact
 
         for (unsigned int s = st_begin; s < st_end; ++s)
           {
-            const unsigned int k =
-              (s > s_impact ? s - s_impact : s_impact - s);
+            const unsigned int k = (s > s_impact ? s - s_impact : s_impact - s);
             double smax = -infinity, defl = -infinity, zmin = infinity,
                    zmax = -infinity, xsum = 0.;
             for (unsigned int f = 0; f < nf; ++f)
               {
                 const std::size_t i = local_index(s, f);
-                const double      m = sphere_mass * fw[f] * sw[s];
-                double            v2 = 0.;
+                const double m      = sphere_mass * fw[f] * sw[s];
+                double v2           = 0.;
                 for (unsigned int c = 0; c < 3; ++c)
                   {
                     const double vc = velocity_component(i, c);
@@ -1218,7 +1241,7 @@ namespace YarnImpact
                       }
                     else
                       {
-                        double       l;
+                        double l;
                         const double e = truss_strain(i, &l);
                         elastic += 0.5 * truss_k * fw[f] * (l - L0) * (l - L0);
                         smax = std::max(smax, e);
@@ -1241,7 +1264,7 @@ namespace YarnImpact
             if (pairs[p].w < 0.f)
               {
                 const std::size_t j = pairs[p].j;
-                double            r2 = 0.;
+                double r2           = 0.;
                 for (unsigned int c = 0; c < 3; ++c)
                   r2 += std::pow(pos[3 * i + c] - pos[3 * j + c], 2);
                 const double delta = std::max(0., d - std::sqrt(r2));
@@ -1252,7 +1275,7 @@ namespace YarnImpact
           if (mpairs[p].active)
             {
               const std::size_t i = mpairs[p].i, j = mpairs[p].j;
-              const double      r2 = std::pow(pos[3 * i] - pos[3 * j], 2) +
+              const double r2 = std::pow(pos[3 * i] - pos[3 * j], 2) +
                                 std::pow(pos[3 * i + 1] - pos[3 * j + 1], 2) +
                                 std::pow(pos[3 * i + 2] + pos[3 * j + 2], 2);
               const double delta = std::max(0., d - std::sqrt(r2));
@@ -1268,16 +1291,20 @@ namespace YarnImpact
               const double ex = pos[3 * i], ey = pos[3 * i + 1] - last_yc;
               const double delta =
                 std::max(0., last_Rr - std::sqrt(ex * ex + ey * ey));
-              contact += fw[f] * sw[s] * projectile_law.energy(delta,
-                                                               &xi_p[3 * i]);
+              contact +=
+                fw[f] * sw[s] * projectile_law.energy(delta, &xi_p[3 * i]);
             }
 
         double sums[5] = {kinetic, elastic, contact, dissipated_local, failed};
         if (n_ranks > 1)
           {
             MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, comm);
-            MPI_Allreduce(MPI_IN_PLACE, buf.data(), buf.size(), MPI_DOUBLE,
-                          MPI_MAX, comm);
+            MPI_Allreduce(MPI_IN_PLACE,
+                          buf.data(),
+                          buf.size(),
+                          MPI_DOUBLE,
+                          MPI_MAX,
+                          comm);
           }
         o.kinetic_energy    = factor * sums[0];
         o.elastic_energy    = factor * sums[1];
@@ -1296,8 +1323,7 @@ namespace YarnImpact
             profile.width[k]         = pwidth[k];
             profile.initial_width[k] = initial_width[k];
           }
-        o.fronts =
-          Analysis::measure_wave_fronts(profile, shared.wave_fronts);
+        o.fronts = Analysis::measure_wave_fronts(profile, shared.wave_fronts);
         bool all_cut = nf > 0;
         for (unsigned int f = 0; f < nf; ++f)
           all_cut = all_cut && fibre_cut[f] > 0.;
@@ -1312,9 +1338,9 @@ namespace YarnImpact
         // Owned cross-sections plus the first ghost one on the right, so the
         // trusses across the rank boundary are drawn.
         const unsigned int p_end = std::min(st_end + 1, hi);
-        std::vector<float>        points;
+        std::vector<float> points;
         std::vector<std::int32_t> lines;
-        std::vector<VTU::Array>   pd(4), cd(3);
+        std::vector<VTU::Array> pd(4), cd(3);
         pd[0] = {"fibre_id", "Int32", 1, {}};
         pd[1] = {"displacement", "Float32", 3, {}};
         pd[2] = {"velocity", "Float32", 3, {}};
@@ -1326,13 +1352,13 @@ namespace YarnImpact
           for (unsigned int f = 0; f < nf; ++f)
             {
               const std::size_t i = local_index(s, f);
-              const double      X0[3] = {sx0[s], fy[f], fz[f]};
+              const double X0[3]  = {sx0[s], fy[f], fz[f]};
               for (unsigned int c = 0; c < 3; ++c)
                 {
                   points.push_back(static_cast<float>(pos[3 * i + c]));
                   pd[1].push(pos[3 * i + c] - X0[c]);
-                  pd[2].push(s < st_end ? velocity_component(i, c) :
-                                          vel[3 * i + c]);
+                  pd[2].push(s < st_end ? velocity_component(i, c)
+                                        : vel[3 * i + c]);
                 }
               pd[0].push(f);
               double e = 0.;
@@ -1349,8 +1375,7 @@ namespace YarnImpact
                   lines.push_back(a + static_cast<std::int32_t>(nf));
                   const double strain = truss_strain(i);
                   cd[0].push(strain);
-                  cd[1].push(broken[i] ? 0. :
-                                         truss_k * fw[f] * strain * L0);
+                  cd[1].push(broken[i] ? 0. : truss_k * fw[f] * strain * L0);
                   cd[2].push(static_cast<unsigned int>(broken[i]));
                 }
             }
@@ -1363,10 +1388,11 @@ namespace YarnImpact
           {
             std::vector<std::string> pieces;
             for (unsigned int q = 0; q < n_ranks; ++q)
-              pieces.push_back(base.str() + "_r" + std::to_string(q) +
-                               ".vtu");
+              pieces.push_back(base.str() + "_r" + std::to_string(q) + ".vtu");
             VTU::write_record(directory + "/" + base.str() + ".pvtu",
-                              pieces, pd, cd);
+                              pieces,
+                              pd,
+                              cd);
           }
         MPI_Barrier(comm);
         return base.str() + ".pvtu";
@@ -1384,8 +1410,8 @@ namespace YarnImpact
 
     std::unique_ptr<ImpactModel>
     create_model(const YarnImpact::Parameters::Shared &shared,
-                 const Parameters                     &parameters,
-                 const MPI_Comm                        communicator)
+                 const Parameters &parameters,
+                 const MPI_Comm communicator)
     {
       return std::make_unique<Model>(shared, parameters, communicator);
     }

@@ -14,11 +14,11 @@ namespace YarnImpact
   {
     FibreCentres
     hexagonal_packing(const unsigned int n,
-                      const double       d,
-                      const double       a_y,
-                      const double       a_z,
-                      const double       max_scale,
-                      const bool         symmetric_z)
+                      const double d,
+                      const double a_y,
+                      const double a_z,
+                      const double max_scale,
+                      const bool symmetric_z)
     {
       const double h = 0.5 * std::sqrt(3.) * d; // row distance
       // Enough rows and columns to hold the ellipse enlarged by max_scale.
@@ -49,8 +49,8 @@ namespace YarnImpact
       if (sites.size() < n)
         {
           std::ostringstream s;
-          s << "= " << n << ": only " << sites.size()
-            << " fibres of diameter " << d
+          s << "= " << n << ": only " << sites.size() << " fibres of diameter "
+            << d
             << " m fit in a hexagonal packing inside the yarn's ellipse "
                "enlarged by DEM/Maximum packing scale = "
             << max_scale;
@@ -62,8 +62,8 @@ namespace YarnImpact
       // it, so that the layout stays symmetric about z = 0 (quarter
       // symmetry) whenever such a site exists.
       FibreCentres result;
-      double       rho_max = 0.;
-      const auto   take    = [&](const Site &site) {
+      double rho_max  = 0.;
+      const auto take = [&](const Site &site) {
         result.y.push_back(site.y);
         result.z.push_back(site.z);
         rho_max = std::max(rho_max, site.rho);
@@ -102,19 +102,19 @@ namespace YarnImpact
     FibreCentres
     read_fibre_file(const std::string &file,
                     const unsigned int n,
-                    const double       d,
-                    const double       a_y,
-                    const double       a_z)
+                    const double d,
+                    const double a_y,
+                    const double a_z)
     {
       const std::string name = "DEM/Fibre file";
-      std::ifstream     in(file);
+      std::ifstream in(file);
       Parameters::require(static_cast<bool>(in),
                           name,
                           "= '" + file + "' cannot be opened");
-      FibreCentres               result;
-      std::vector<unsigned int>  line_of;
-      std::string                line;
-      unsigned int               line_number = 0;
+      FibreCentres result;
+      std::vector<unsigned int> line_of;
+      std::string line;
+      unsigned int line_number = 0;
       while (std::getline(in, line))
         {
           ++line_number;
@@ -124,8 +124,8 @@ namespace YarnImpact
           if (line.find_first_not_of(" \t\r") == std::string::npos)
             continue;
           std::istringstream s(line);
-          double             y, z;
-          std::string        rest;
+          double y, z;
+          std::string rest;
           const bool ok = static_cast<bool>(s >> y >> z) && !(s >> rest) &&
                           std::isfinite(y) && std::isfinite(z);
           std::string shown = line;
@@ -158,8 +158,8 @@ namespace YarnImpact
       for (unsigned int a = 0; a < n; ++a)
         for (unsigned int b = a + 1; b < n; ++b)
           {
-            const double dist = std::hypot(result.y[a] - result.y[b],
-                                           result.z[a] - result.z[b]);
+            const double dist =
+              std::hypot(result.y[a] - result.y[b], result.z[a] - result.z[b]);
             if (dist < d * (1. - 1e-9))
               {
                 std::ostringstream s;

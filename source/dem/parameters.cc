@@ -103,8 +103,8 @@ namespace YarnImpact
       using YarnImpact::Parameters::get_positive_integer;
       using YarnImpact::Parameters::require;
       prm.enter_subsection("DEM");
-      layout = (prm.get("Fibre layout") == "file" ? FibreLayout::file :
-                                                    FibreLayout::hexagonal);
+      layout     = (prm.get("Fibre layout") == "file" ? FibreLayout::file
+                                                      : FibreLayout::hexagonal);
       fibre_file = prm.get("Fibre file");
       require(layout != FibreLayout::file || !fibre_file.empty(),
               "DEM/Fibre file",
@@ -142,7 +142,7 @@ namespace YarnImpact
       skin         = get_positive_double(prm, "DEM", "Skin");
       const long c = prm.get_integer("Coordination number");
       require(c >= 0, "DEM/Coordination number", "must not be negative");
-      coordination = static_cast<unsigned int>(c);
+      coordination   = static_cast<unsigned int>(c);
       ghost_stations = get_positive_integer(prm, "DEM", "Ghost stations");
       prm.leave_subsection();
     }

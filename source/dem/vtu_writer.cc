@@ -31,10 +31,14 @@ namespace YarnImpact
           bytes.push_back(static_cast<std::uint8_t>(value));
       }
 
-      template void Array::push<double>(const double);
-      template void Array::push<float>(const float);
-      template void Array::push<int>(const int);
-      template void Array::push<unsigned int>(const unsigned int);
+      template void
+      Array::push<double>(const double);
+      template void
+      Array::push<float>(const float);
+      template void
+      Array::push<int>(const int);
+      template void
+      Array::push<unsigned int>(const unsigned int);
 
       namespace
       {
@@ -59,12 +63,12 @@ namespace YarnImpact
         }
 
         void
-        write_array(std::ostream              &out,
-                    const std::string         &name,
-                    const std::string         &type,
-                    const unsigned int         components,
-                    const std::uint8_t        *data,
-                    const std::size_t          n)
+        write_array(std::ostream &out,
+                    const std::string &name,
+                    const std::string &type,
+                    const unsigned int components,
+                    const std::uint8_t *data,
+                    const std::size_t n)
         {
           out << "<DataArray type=\"" << type << "\"";
           if (!name.empty())
@@ -72,7 +76,7 @@ namespace YarnImpact
           out << " NumberOfComponents=\"" << components
               << "\" format=\"binary\">\n";
           const std::uint32_t header = static_cast<std::uint32_t>(n);
-          std::uint8_t        h[4];
+          std::uint8_t h[4];
           std::memcpy(h, &header, 4);
           base64(out, h, 4);
           base64(out, data, n);
@@ -81,11 +85,11 @@ namespace YarnImpact
       } // namespace
 
       void
-      write_piece(const std::string          &file,
-                  const std::vector<float>   &points,
+      write_piece(const std::string &file,
+                  const std::vector<float> &points,
                   const std::vector<int32_t> &lines,
-                  const std::vector<Array>   &point_data,
-                  const std::vector<Array>   &cell_data)
+                  const std::vector<Array> &point_data,
+                  const std::vector<Array> &cell_data)
       {
         std::ofstream out(file, std::ios::binary);
         if (!out)
@@ -99,24 +103,41 @@ namespace YarnImpact
             << n_points << "\" NumberOfCells=\"" << n_cells << "\">\n";
         out << "<PointData>\n";
         for (const auto &a : point_data)
-          write_array(out, a.name, a.type, a.components, a.bytes.data(),
+          write_array(out,
+                      a.name,
+                      a.type,
+                      a.components,
+                      a.bytes.data(),
                       a.bytes.size());
         out << "</PointData>\n<CellData>\n";
         for (const auto &a : cell_data)
-          write_array(out, a.name, a.type, a.components, a.bytes.data(),
+          write_array(out,
+                      a.name,
+                      a.type,
+                      a.components,
+                      a.bytes.data(),
                       a.bytes.size());
         out << "</CellData>\n<Points>\n";
-        write_array(out, "", "Float32", 3,
+        write_array(out,
+                    "",
+                    "Float32",
+                    3,
                     reinterpret_cast<const std::uint8_t *>(points.data()),
                     4 * points.size());
         out << "</Points>\n<Cells>\n";
-        write_array(out, "connectivity", "Int32", 1,
+        write_array(out,
+                    "connectivity",
+                    "Int32",
+                    1,
                     reinterpret_cast<const std::uint8_t *>(lines.data()),
                     4 * lines.size());
         std::vector<std::int32_t> offsets(n_cells);
         for (std::size_t c = 0; c < n_cells; ++c)
           offsets[c] = 2 * (c + 1);
-        write_array(out, "offsets", "Int32", 1,
+        write_array(out,
+                    "offsets",
+                    "Int32",
+                    1,
                     reinterpret_cast<const std::uint8_t *>(offsets.data()),
                     4 * offsets.size());
         std::vector<std::uint8_t> types(n_cells, 3); // VTK_LINE
@@ -125,10 +146,10 @@ namespace YarnImpact
       }
 
       void
-      write_record(const std::string              &file,
+      write_record(const std::string &file,
                    const std::vector<std::string> &pieces,
-                   const std::vector<Array>       &point_data,
-                   const std::vector<Array>       &cell_data)
+                   const std::vector<Array> &point_data,
+                   const std::vector<Array> &cell_data)
       {
         std::ofstream out(file);
         if (!out)

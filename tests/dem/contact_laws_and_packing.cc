@@ -23,18 +23,18 @@ namespace
 
   void
   check_packing(const unsigned int n,
-                const double       a_y,
-                const double       a_z,
-                const bool         symmetric)
+                const double a_y,
+                const double a_z,
+                const bool symmetric)
   {
     const double d = 12e-6;
-    const auto   c = hexagonal_packing(n, d, a_y, a_z, 1.1, symmetric);
-    bool         inside = true, symmetric_about = true;
+    const auto c   = hexagonal_packing(n, d, a_y, a_z, 1.1, symmetric);
+    bool inside = true, symmetric_about = true;
     for (unsigned int k = 0; k < c.size(); ++k)
       {
         const double rho =
           std::sqrt(std::pow(c.y[k] / a_y, 2) + std::pow(c.z[k] / a_z, 2));
-        inside = inside && rho <= c.scale * (1. + 1e-12);
+        inside        = inside && rho <= c.scale * (1. + 1e-12);
         bool mirrored = false;
         for (unsigned int l = 0; l < c.size(); ++l)
           mirrored = mirrored || (std::abs(c.y[l] - c.y[k]) < 1e-15 &&
@@ -59,24 +59,24 @@ namespace
   collide(const double zeta, double &e, double &energy_error)
   {
     const double m = 1.9543e-12, k = 3.99e5, d = 12e-6, v0 = 10.;
-    ContactLaw   law;
-    law.k_n = k;
-    law.c_n = 2. * zeta * std::sqrt(0.5 * m * k);
-    law.k_t = 2. / 7. * k;
-    law.mu  = 0.2;
+    ContactLaw law;
+    law.k_n         = k;
+    law.c_n         = 2. * zeta * std::sqrt(0.5 * m * k);
+    law.k_t         = 2. / 7. * k;
+    law.mu          = 0.2;
     const double dt = 0.02 * std::sqrt(m / k);
-    double       x[2] = {0., d + 1e-9}, v[2] = {0.5 * v0, -0.5 * v0}, f[2];
-    double       xi[3] = {0., 0., 0.}, dissipated = 0.;
-    const double E0    = 0.25 * m * v0 * v0;
-    energy_error       = 0.;
-    auto forces        = [&]() {
+    double x[2] = {0., d + 1e-9}, v[2] = {0.5 * v0, -0.5 * v0}, f[2];
+    double xi[3] = {0., 0., 0.}, dissipated = 0.;
+    const double E0 = 0.25 * m * v0 * v0;
+    energy_error    = 0.;
+    auto forces     = [&]() {
       const double delta = d - (x[1] - x[0]);
       f[0] = f[1] = 0.;
       if (delta > 0.)
         {
           const double n[3]  = {-1., 0., 0.}; // from sphere 1 to sphere 0
           const double vr[3] = {v[0] - v[1], 0., 0.};
-          double       fc[3];
+          double fc[3];
           law.force(delta, n, vr, dt, xi, fc, dissipated);
           f[0] = fc[0];
           f[1] = -fc[0];
@@ -109,20 +109,20 @@ namespace
   slide(const double P, const double N, const double mu)
   {
     const double m = 1.9543e-12, k = 3.99e5;
-    ContactLaw   law;
-    law.k_n = k;
-    law.c_n = 2. * 0.5 * std::sqrt(m * k);
-    law.k_t = 2. / 7. * k;
-    law.mu  = mu;
+    ContactLaw law;
+    law.k_n         = k;
+    law.c_n         = 2. * 0.5 * std::sqrt(m * k);
+    law.k_t         = 2. / 7. * k;
+    law.mu          = mu;
     const double dt = 0.05 * std::sqrt(m / k);
     // y: normal (flat at y = 0, sphere centre at y = r - delta), x: tangent
-    double       pos[2] = {0., -N / k}, vel[2] = {0., 0.}, frc[2];
-    double       xi[3] = {0., 0., 0.}, dissipated = 0.;
-    auto         forces = [&]() {
+    double pos[2] = {0., -N / k}, vel[2] = {0., 0.}, frc[2];
+    double xi[3] = {0., 0., 0.}, dissipated = 0.;
+    auto forces = [&]() {
       const double delta = -pos[1];
       const double n[3]  = {0., 1., 0.};
       const double vr[3] = {vel[0], vel[1], 0.};
-      double       fc[3] = {0., 0., 0.};
+      double fc[3]       = {0., 0., 0.};
       if (delta > 0.)
         law.force(delta, n, vr, dt, xi, fc, dissipated);
       frc[0] = fc[0] + P;
@@ -165,31 +165,26 @@ main()
 
   for (const double zeta : {0.1, 0.3})
     {
-      double       e, error;
+      double e, error;
       const double expected =
         std::exp(-M_PI * zeta / std::sqrt(1. - zeta * zeta));
       collide(zeta, e, error);
-      std::cout << std::setprecision(4) << "restitution, damping ratio "
-                << zeta << ": " << e << ", theory " << expected
-                << ", error within 2 % "
-                << verdict(std::abs(e - expected) < 0.02 * expected)
-                << '\n';
+      std::cout << std::setprecision(4) << "restitution, damping ratio " << zeta
+                << ": " << e << ", theory " << expected << ", error within 2 % "
+                << verdict(std::abs(e - expected) < 0.02 * expected) << '\n';
     }
   {
     double e, error;
     collide(0., e, error);
-    std::cout << std::setprecision(4)
-              << "undamped collision: restitution " << e
-              << ", energy error below 0.1 % " << verdict(error < 1e-3)
-              << '\n';
+    std::cout << std::setprecision(4) << "undamped collision: restitution " << e
+              << ", energy error below 0.1 % " << verdict(error < 1e-3) << '\n';
   }
   {
     const double m = 1.9543e-12, N = 1e-3, mu = 0.2;
-    const double a_stick = slide(0.5 * mu * N, N, mu);
-    const double a_slide = slide(2. * mu * N, N, mu);
+    const double a_stick  = slide(0.5 * mu * N, N, mu);
+    const double a_slide  = slide(2. * mu * N, N, mu);
     const double expected = (2. * mu * N - mu * N) / m;
-    std::cout << std::setprecision(4)
-              << "Coulomb: pulled by 0.5 mu N: sticks "
+    std::cout << std::setprecision(4) << "Coulomb: pulled by 0.5 mu N: sticks "
               << verdict(std::abs(a_stick) < 1e-3 * expected)
               << "; pulled by 2 mu N: acceleration / (mu N / m) "
               << a_slide / expected << " "

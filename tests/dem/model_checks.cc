@@ -40,13 +40,13 @@ namespace
     p.yarn.width_semi_axis        = 6e-6;
     p.yarn.failure_strain         = 0.01;
     p.projectile.initial_velocity = 400.;
-    p.projectile.motion = Parameters::ProjectileMotion::prescribed_velocity;
+    p.projectile.motion  = Parameters::ProjectileMotion::prescribed_velocity;
     Parameters::Shared q = p;
     q.yarn.failure       = false;
-    DEM::Parameters    dem;
-    auto               breaking = DEM::create_model(p, dem, MPI_COMM_WORLD);
-    auto               intact   = DEM::create_model(q, dem, MPI_COMM_WORLD);
-    Projectile         projectile(p.projectile, p.yarn.thickness_semi_axis);
+    DEM::Parameters dem;
+    auto breaking = DEM::create_model(p, dem, MPI_COMM_WORLD);
+    auto intact   = DEM::create_model(q, dem, MPI_COMM_WORLD);
+    Projectile projectile(p.projectile, p.yarn.thickness_semi_axis);
     std::ostringstream log;
     breaking->setup(projectile, log);
     intact->setup(projectile, log);
@@ -54,7 +54,7 @@ namespace
     breaking->compute_forces(projectile, dt);
     intact->compute_forces(projectile, dt);
     unsigned int first_break = 0, first_passed = 0;
-    double       strain_before = 0., strain_at = 0.;
+    double strain_before = 0., strain_at = 0.;
     for (unsigned int step = 1; step < 4000 && first_break == 0; ++step)
       {
         for (auto *m : {breaking.get(), intact.get()})
@@ -110,8 +110,10 @@ namespace
     dem.layout     = DEM::FibreLayout::file;
     dem.fibre_file = "fibres.txt";
     std::ostringstream sink;
-    ImpactSimulation   simulation(
-      p, DEM::create_model(p, dem, MPI_COMM_WORLD), MPI_COMM_WORLD, sink);
+    ImpactSimulation simulation(p,
+                                DEM::create_model(p, dem, MPI_COMM_WORLD),
+                                MPI_COMM_WORLD,
+                                sink);
     simulation.run();
     return simulation.history();
   }
@@ -122,7 +124,7 @@ namespace
     // 13 fibres, symmetric about y = 0 and z = 0 (hexagonal, spacing d).
     {
       std::ofstream f("fibres.txt");
-      const double  d = 12e-6, h = 0.5 * std::sqrt(3.) * d;
+      const double d = 12e-6, h = 0.5 * std::sqrt(3.) * d;
       f << std::setprecision(17) << "# y z [m]\n";
       for (const int i : {-2, -1, 0, 1, 2})
         f << 0. << ' ' << i * d << '\n';
@@ -143,21 +145,20 @@ namespace
             dv = std::max(dv,
                           std::abs(full[r].projectile_velocity -
                                    (*other)[r].projectile_velocity));
-            for (const double e :
-                 {a.kinetic_energy - b.kinetic_energy,
-                  a.elastic_energy - b.elastic_energy,
-                  a.contact_energy - b.contact_energy,
-                  a.dissipated_energy - b.dissipated_energy})
+            for (const double e : {a.kinetic_energy - b.kinetic_energy,
+                                   a.elastic_energy - b.elastic_energy,
+                                   a.contact_energy - b.contact_energy,
+                                   a.dissipated_energy - b.dissipated_energy})
               dE = std::max(dE, std::abs(e) / E0);
-            df = std::max(df, std::abs(full[r].contact_force -
-                                       (*other)[r].contact_force));
+            df = std::max(df,
+                          std::abs(full[r].contact_force -
+                                   (*other)[r].contact_force));
           }
         std::cout << (other == &half ? "half" : "quarter")
                   << " symmetry against the full model: " << full.size()
                   << " and " << other->size() << " history rows, velocity "
-                  << verdict(dv < 1e-6) << ", energies "
-                  << verdict(dE < 1e-6) << ", contact force "
-                  << verdict(df < 1e-6) << '\n';
+                  << verdict(dv < 1e-6) << ", energies " << verdict(dE < 1e-6)
+                  << ", contact force " << verdict(df < 1e-6) << '\n';
       }
     std::cout << std::fixed << std::setprecision(4)
               << "full model: final velocity "

@@ -42,13 +42,13 @@ namespace YarnImpact
        * is added [J]
        */
       inline void
-      force(const double  delta,
+      force(const double delta,
             const double *n,
             const double *v_rel,
-            const double  dt,
-            double       *xi,
-            double       *f,
-            double       &dissipated) const
+            const double dt,
+            double *xi,
+            double *f,
+            double &dissipated) const
       {
         const double vn = v_rel[0] * n[0] + v_rel[1] * n[1] + v_rel[2] * n[2];
         const double fn = k_n * delta - c_n * vn;
@@ -57,15 +57,13 @@ namespace YarnImpact
         // Rotate the history onto the tangent plane, keeping its length.
         const double xn  = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2];
         const double xx0 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
-        double       t[3] = {xi[0] - xn * n[0],
-                             xi[1] - xn * n[1],
-                             xi[2] - xn * n[2]};
+        double t[3] = {xi[0] - xn * n[0], xi[1] - xn * n[1], xi[2] - xn * n[2]};
         const double tt   = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
         const double keep = (tt > 0. ? std::sqrt(xx0 / tt) : 0.);
         for (unsigned int d = 0; d < 3; ++d)
           xi[d] = keep * t[d] + dt * (v_rel[d] - vn * n[d]);
 
-        double       ft[3] = {-k_t * xi[0], -k_t * xi[1], -k_t * xi[2]};
+        double ft[3]       = {-k_t * xi[0], -k_t * xi[1], -k_t * xi[2]};
         const double ft2   = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2];
         const double limit = mu * (fn > 0. ? fn : 0.);
         if (ft2 > limit * limit)
@@ -102,10 +100,7 @@ namespace YarnImpact
      * @param[out] f force on the first end (the second gets -f) [N]
      */
     inline double
-    truss_force(const double *e,
-                const double  k,
-                const double  L0,
-                double       *f)
+    truss_force(const double *e, const double k, const double L0, double *f)
     {
       const double l = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
       const double s = k * (l - L0) / l;

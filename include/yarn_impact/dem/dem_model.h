@@ -72,8 +72,8 @@ namespace YarnImpact
     /** Create the DEM model of the yarn described by @p shared. */
     std::unique_ptr<ImpactModel>
     create_model(const YarnImpact::Parameters::Shared &shared,
-                 const Parameters                     &parameters,
-                 const MPI_Comm                        communicator);
+                 const Parameters &parameters,
+                 const MPI_Comm communicator);
 
     /** Neighbour-list statistics of a DEM model (rebuilds, pairs), for the
      * benchmark; empty for another model. */

@@ -39,11 +39,11 @@ namespace YarnImpact
      */
     FibreCentres
     hexagonal_packing(const unsigned int n,
-                      const double       d,
-                      const double       a_y,
-                      const double       a_z,
-                      const double       max_scale,
-                      const bool         symmetric_z = false);
+                      const double d,
+                      const double a_y,
+                      const double a_z,
+                      const double max_scale,
+                      const bool symmetric_z = false);
 
     /**
      * Read fibre centres, one `y z` pair per line [m]; blank lines and text
@@ -54,9 +54,9 @@ namespace YarnImpact
     FibreCentres
     read_fibre_file(const std::string &file,
                     const unsigned int n,
-                    const double       d,
-                    const double       a_y,
-                    const double       a_z);
+                    const double d,
+                    const double a_y,
+                    const double a_z);
 
     /** Smallest distance between two centres (infinity for fewer than two),
      * for the checks [m]. */

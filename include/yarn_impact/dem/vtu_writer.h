@@ -19,9 +19,9 @@ namespace YarnImpact
       /** A named data array of Float32, Int32 or UInt8 values. */
       struct Array
       {
-        std::string               name;
-        std::string               type; ///< "Float32", "Int32" or "UInt8"
-        unsigned int              components = 1;
+        std::string name;
+        std::string type; ///< "Float32", "Int32" or "UInt8"
+        unsigned int components = 1;
         std::vector<std::uint8_t> bytes;
 
         /** Append values (converted to the array's type). */
@@ -36,19 +36,19 @@ namespace YarnImpact
        * @param lines point indices, 2 per line cell
        */
       void
-      write_piece(const std::string          &file,
-                  const std::vector<float>   &points,
+      write_piece(const std::string &file,
+                  const std::vector<float> &points,
                   const std::vector<int32_t> &lines,
-                  const std::vector<Array>   &point_data,
-                  const std::vector<Array>   &cell_data);
+                  const std::vector<Array> &point_data,
+                  const std::vector<Array> &cell_data);
 
       /** Write the `.pvtu` record of @p pieces (file names relative to the
        * record); the arrays give the names, types and components. */
       void
-      write_record(const std::string              &file,
+      write_record(const std::string &file,
                    const std::vector<std::string> &pieces,
-                   const std::vector<Array>       &point_data,
-                   const std::vector<Array>       &cell_data);
+                   const std::vector<Array> &point_data,
+                   const std::vector<Array> &cell_data);
     } // namespace VTU
   }   // namespace DEM
 } // namespace YarnImpact
