@@ -1,7 +1,7 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Plot the projectile velocity history of a DEM run.
 
-    python3 doc/plot_dem_velocity.py results-dem-km2/history_dem.csv doc/dem_velocity.png
+    /usr/bin/python3 doc/plot_dem_velocity.py results-dem-km2/history_dem.csv doc/dem_velocity.png
 """
 import csv
 import sys
