@@ -1,33 +1,1430 @@
-#include <yarn_impact/core/parameter_tools.h>
-#include <yarn_impact/dem/dem_model.h>
+// The DEM yarn: fibres as chains of spheres joined by trusses, with
+// penalty contacts (doc/dem.md). Everything that runs every step is a plain
+// loop over contiguous arrays: no allocation, maps or virtual calls.
+#pragma GCC optimize("O3")
 
-#include <deal.II/base/parameter_handler.h>
+#include <yarn_impact/core/impact_simulation.h>
+#include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/core/projectile.h>
+#include <yarn_impact/dem/contact_law.h>
+#include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/dem/packing.h>
+#include <yarn_impact/dem/vtu_writer.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/numbers.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <sstream>
 
 namespace YarnImpact
 {
   namespace DEM
   {
-    void
-    Parameters::declare_parameters(dealii::ParameterHandler &prm)
+    namespace
     {
-      prm.enter_subsection("DEM");
-      prm.leave_subsection();
+      using dealii::numbers::PI;
+      using Symmetry            = YarnImpact::Parameters::Symmetry;
+      constexpr double infinity = std::numeric_limits<double>::infinity();
+
+      /** A listed sphere pair; a negative weight marks an active contact
+       * (one with tangential history). */
+      struct Pair
+      {
+        std::uint32_t j;
+        float w;
+      };
+
+      /** A pair of a sphere with the mirror image (in z = 0) of another one,
+       * or of itself (quarter symmetry). */
+      struct MirrorPair
+      {
+        std::uint32_t i, j;
+        float w;
+        bool active;
+      };
+
+
+      class Model : public ImpactModel
+      {
+      public:
+        Model(const YarnImpact::Parameters::Shared &shared,
+              const Parameters &parameters,
+              const MPI_Comm communicator);
+
+        std::string
+        name() const override
+        {
+          return "dem";
+        }
+
+        void
+        setup(const Projectile &projectile, std::ostream &out) override;
+
+        double
+        stable_time_step() const override
+        {
+          return critical_step;
+        }
+
+        double
+        yarn_top() const override
+        {
+          // The highest sphere surface of the packing: the projectile starts
+          // touching it. Every rank holds the whole fibre layout.
+          double top = -std::numeric_limits<double>::max();
+          for (const double y : fy)
+            top = std::max(top, y + radius);
+          return top;
+        }
+
+        double
+        compute_forces(const Projectile &projectile, const double dt) override;
+
+        void
+        kick(const double dt) override
+        {
+          // The kick is applied lazily, fused with the next drift (one pass
+          // over memory instead of two); observables add it on the fly.
+          pending_kick += dt;
+        }
+
+        void
+        drift(const double dt) override;
+
+        Observables
+        observables() const override;
+
+        bool
+        yarn_cut_through() const override
+        {
+          return cut_through;
+        }
+
+        AxialProperties
+        axial_properties() const override;
+
+        double
+        mass() const override
+        {
+          return total_mass;
+        }
+
+        std::string
+        write_snapshot(const std::string &directory,
+                       const unsigned int index,
+                       const double time) const override;
+
+        unsigned long
+        n_elements() const override
+        {
+          return static_cast<unsigned long>(nf_whole) * n_whole_stations;
+        }
+
+        /** Counters for the benchmark and the set-up report. */
+        std::string
+        statistics() const
+        {
+          std::ostringstream s;
+          s << "rebuilds " << n_rebuilds << " in " << step_count
+            << " force evaluations (rank " << rank << "), listed pairs "
+            << pairs.size() << ", last bound terms r " << last_r << " g "
+            << last_g << " m";
+          return s.str();
+        }
+
+      private:
+        double last_r = 0., last_g = 0.;
+        // --- set-up data ---------------------------------------------------
+        const YarnImpact::Parameters::Shared shared;
+        const Parameters prm;
+        const MPI_Comm comm;
+        const unsigned int rank, n_ranks;
+        const Symmetry symmetry;
+        const bool x_sym, z_sym;
+        const double factor;
+
+        unsigned int nf               = 0; // modelled fibres
+        unsigned int nf_whole         = 0;
+        unsigned int n_st             = 0; // modelled stations (cross-sections)
+        unsigned int n_whole_stations = 0;
+        unsigned int s_impact         = 0; // station at x = 0
+        unsigned int n_prof           = 0; // stations of the folded profile
+        double d = 0., radius = 0., L0 = 0., sphere_mass = 0., truss_k = 0.,
+               fibre_area = 0., cutoff = 0.;
+        double packing_scale = 1.;
+
+        std::vector<double> fy, fz, fw, finv, zmask; // per fibre
+        std::vector<double> sx0, sw, sinv, xmask;    // per station
+
+        ContactLaw fibre_law, projectile_law;
+        double critical_step = 0.;
+        double total_mass    = 0.;
+        double failure_strain;
+        bool failure;
+
+        // --- decomposition ---------------------------------------------------
+        unsigned int st_begin = 0, st_end = 0, lo = 0, hi = 0;
+        std::size_t n_local = 0, own_b = 0, own_e = 0;
+
+        // --- state (local spheres, cross-section-major)
+        // ------------------------
+        std::vector<double> pos, vel, frc;
+        std::vector<float> pos_build;
+        std::vector<std::uint32_t> bin_of;
+        std::vector<std::uint8_t> broken; // truss (s, s+1) of each sphere
+        std::vector<double> xi_p;         // projectile tangential history
+        std::vector<std::uint64_t> proj_step;
+        double pending_kick      = 0.;
+        bool forces_consumed     = true;
+        std::uint64_t step_count = 0;
+        mutable bool cut_through = false;
+
+        // Per-station extents of the owned stations (from the last drift).
+        std::vector<double> st_xlo, st_xhi, st_ymax;
+        std::vector<double> extent_buffer;
+
+        // --- neighbour lists
+        // ---------------------------------------------------
+        std::vector<std::uint32_t> pstart, pstart_old;
+        std::vector<Pair> pairs, pairs_old;
+        std::vector<double> pxi, pxi_old;
+        std::vector<MirrorPair> mpairs, mpairs_old;
+        std::vector<double> mxi, mxi_old;
+
+        // Bins along x (the build frame) and the rebuild criterion.
+        double bin_x0 = 0., bin_h = 1.;
+        unsigned int n_bins = 0;
+        std::vector<std::uint32_t> bin_count;
+        std::vector<double> D_prev, D_sum;
+        double r2_max            = 0.;
+        unsigned long n_rebuilds = 0;
+
+        // Scratch of the rebuild (kept to avoid reallocation).
+        std::vector<std::uint32_t> bin_start, bin_sphere, cell_off, cell_start,
+          cell_sphere, near_sphere;
+        std::vector<double> bin_y0, bin_z0, bin_ic;
+        std::vector<std::uint32_t> bin_ny, bin_nz;
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> found;
+
+        // --- energy accounting (local)
+        // ----------------------------------------
+        double dissipated_local = 0.;
+        double last_yc = 0., last_Rr = 0.;
+
+        // Initial width of each profile station.
+        std::vector<double> initial_width;
+        mutable std::vector<double> profile_buffer;
+
+        // --- helpers
+        // -----------------------------------------------------------
+        std::size_t
+        local_index(const unsigned int s, const unsigned int f) const
+        {
+          return static_cast<std::size_t>(s - lo) * nf + f;
+        }
+        bool
+        owned(const std::size_t i) const
+        {
+          return i >= own_b && i < own_e;
+        }
+        double
+        own_factor(const std::size_t i, const std::size_t j) const
+        {
+          return 0.5 * (owned(i) + owned(j));
+        }
+        unsigned int
+        station_of(const std::size_t i) const
+        {
+          return lo + static_cast<unsigned int>(i / nf);
+        }
+
+        void
+        exchange_ghosts(std::vector<double> &v);
+        void
+        compute_station_extents(const unsigned int s);
+        void
+        accumulate_criterion(const std::size_t i);
+        bool
+        lists_valid();
+        void
+        check_locality();
+        void
+        rebuild();
+        double
+        truss_strain(const std::size_t i, double *length = nullptr) const;
+        double
+        velocity_component(const std::size_t i, const unsigned int d) const;
+      };
+
+
+      Model::Model(const YarnImpact::Parameters::Shared &shared,
+                   const Parameters &parameters,
+                   const MPI_Comm communicator)
+        : shared(shared)
+        , prm(parameters)
+        , comm(communicator)
+        , rank(dealii::Utilities::MPI::this_mpi_process(communicator))
+        , n_ranks(dealii::Utilities::MPI::n_mpi_processes(communicator))
+        , symmetry(shared.general.symmetry)
+        , x_sym(symmetry != Symmetry::none)
+        , z_sym(symmetry == Symmetry::quarter)
+        , factor(YarnImpact::Parameters::symmetry_factor(symmetry))
+        , failure_strain(shared.yarn.failure_strain)
+        , failure(shared.yarn.failure)
+      {
+        using YarnImpact::Parameters::require;
+        const auto &y = shared.yarn;
+        d             = y.fibre_diameter;
+        radius        = 0.5 * d;
+        require(prm.sphere_spacing <= d * (1. + 1e-12),
+                "DEM/Sphere spacing",
+                "must not exceed Yarn/Fibre diameter: larger gaps would let "
+                "fibres pass between the spheres of another fibre");
+
+        // Fibre centres.
+        FibreCentres centres = (prm.layout == FibreLayout::file
+                                  ? read_fibre_file(prm.fibre_file,
+                                                    y.n_fibres,
+                                                    d,
+                                                    y.thickness_semi_axis,
+                                                    y.width_semi_axis)
+                                  : hexagonal_packing(y.n_fibres,
+                                                      d,
+                                                      y.thickness_semi_axis,
+                                                      y.width_semi_axis,
+                                                      prm.max_packing_scale,
+                                                      z_sym));
+        packing_scale        = centres.scale;
+        nf_whole             = centres.size();
+        if (z_sym)
+          {
+            // The layout must be its own mirror image in z = 0.
+            for (unsigned int a = 0; a < nf_whole; ++a)
+              {
+                bool mirrored = (centres.z[a] == 0.);
+                for (unsigned int b = 0; b < nf_whole && !mirrored; ++b)
+                  mirrored = std::abs(centres.y[b] - centres.y[a]) < 1e-9 * d &&
+                             std::abs(centres.z[b] + centres.z[a]) < 1e-9 * d;
+                require(mirrored,
+                        "Symmetry",
+                        "= quarter needs fibre centres symmetric about z = 0, "
+                        "but the layout is not (use Symmetry = half)");
+              }
+          }
+        for (unsigned int a = 0; a < nf_whole; ++a)
+          if (!z_sym || centres.z[a] >= 0.)
+            {
+              const bool on_plane = z_sym && centres.z[a] == 0.;
+              // Touching neighbours get a gap of 1e-9 d, so that they do not
+              // start as contacts with round-off overlaps.
+              fy.push_back(centres.y[a] * (1. + 1e-9));
+              fz.push_back(centres.z[a] * (1. + 1e-9));
+              fw.push_back(on_plane ? 0.5 : 1.);
+              zmask.push_back(on_plane ? 0. : 1.);
+            }
+        nf = fy.size();
+
+        // Stations: an even number of equal trusses over the length, so
+        // that a cross-section lies on the plane x = 0.
+        const unsigned int n_seg =
+          2 * static_cast<unsigned int>(
+                std::ceil(y.length / (2. * prm.sphere_spacing) - 1e-9));
+        L0               = y.length / n_seg;
+        n_whole_stations = n_seg + 1;
+        n_prof           = n_seg / 2 + 1;
+        n_st             = x_sym ? n_seg / 2 + 1 : n_seg + 1;
+        s_impact         = x_sym ? 0 : n_seg / 2;
+        for (unsigned int s = 0; s < n_st; ++s)
+          {
+            const double x     = x_sym ? s * L0 : -0.5 * y.length + s * L0;
+            const bool plane   = x_sym && s == 0;
+            const bool clamped = (s == n_st - 1) || (!x_sym && s == 0);
+            sx0.push_back(x);
+            sw.push_back(plane ? 0.5 : 1.);
+            sinv.push_back(clamped ? 0. : (plane ? 2. : 1.));
+            xmask.push_back(plane ? 0. : 1.);
+          }
+
+        fibre_area  = PI * d * d / 4.;
+        sphere_mass = y.fibre_density * fibre_area * L0;
+        truss_k     = y.fibre_modulus * fibre_area / L0;
+        for (unsigned int f = 0; f < nf; ++f)
+          finv.push_back(1. / (sphere_mass * fw[f]));
+        cutoff = d + prm.skin;
+
+        // Contact laws (doc/dem.md): c = 2 zeta sqrt(m_eff k).
+        fibre_law.k_n = prm.normal_stiffness_ratio * truss_k;
+        fibre_law.c_n =
+          2. * prm.damping_ratio * std::sqrt(0.5 * sphere_mass * fibre_law.k_n);
+        fibre_law.k_t      = prm.tangential_stiffness_ratio * fibre_law.k_n;
+        fibre_law.mu       = prm.friction;
+        projectile_law.k_n = prm.projectile_stiffness_ratio * truss_k;
+        projectile_law.c_n = 2. * prm.projectile_damping_ratio *
+                             std::sqrt(sphere_mass * projectile_law.k_n);
+        projectile_law.k_t =
+          prm.tangential_stiffness_ratio * projectile_law.k_n;
+        projectile_law.mu = prm.projectile_friction;
+
+        // Stable step (physics.md 4.1): Gershgorin bound of a sphere with
+        // two trusses, `coordination` fibre contacts and the projectile,
+        // reduced for the contact damping.
+        const double omega2 = 2. *
+                              (2. * truss_k + prm.coordination * fibre_law.k_n +
+                               projectile_law.k_n) /
+                              sphere_mass;
+        const double zeta =
+          std::max(prm.damping_ratio, prm.projectile_damping_ratio);
+        critical_step =
+          2. / std::sqrt(omega2) * (std::sqrt(1. + zeta * zeta) - zeta);
+
+        total_mass = 0.;
+        for (unsigned int f = 0; f < nf; ++f)
+          for (unsigned int s = 0; s < n_st; ++s)
+            total_mass += sphere_mass * fw[f] * sw[s];
+        total_mass *= factor;
+
+        // Slabs of stations.
+        const unsigned int G = prm.ghost_stations;
+        st_begin = static_cast<unsigned int>(static_cast<unsigned long>(n_st) *
+                                             rank / n_ranks);
+        st_end   = static_cast<unsigned int>(static_cast<unsigned long>(n_st) *
+                                           (rank + 1) / n_ranks);
+        const bool enough =
+          n_ranks == 1 || static_cast<unsigned long>(n_st) / n_ranks >= G + 1;
+        require(enough,
+                "DEM/Ghost stations",
+                "= " + std::to_string(G) + " is too large for " +
+                  std::to_string(n_st) + " cross-sections on " +
+                  std::to_string(n_ranks) +
+                  " MPI ranks (each rank needs more cross-sections than "
+                  "ghost layers): use fewer ranks or fewer ghost stations");
+        lo      = (rank == 0 ? 0 : st_begin - G);
+        hi      = (rank + 1 == n_ranks ? n_st : st_end + G);
+        n_local = static_cast<std::size_t>(hi - lo) * nf;
+        own_b   = local_index(st_begin, 0);
+        own_e   = local_index(st_end, 0);
+      }
+
+
+      AxialProperties
+      Model::axial_properties() const
+      {
+        AxialProperties a;
+        a.area           = nf_whole * fibre_area;
+        a.density        = shared.yarn.fibre_density;
+        a.modulus        = shared.yarn.fibre_modulus;
+        const double E   = a.modulus;
+        a.nominal_stress = [E](const double e) { return E * e; };
+        return a;
+      }
+
+
+      void
+      Model::setup(const Projectile &projectile, std::ostream &out)
+      {
+        pos.assign(3 * n_local, 0.);
+        vel.assign(3 * n_local, 0.);
+        frc.assign(3 * n_local, 0.);
+        pos_build.assign(3 * n_local, 0.f);
+        bin_of.assign(n_local, 0);
+        broken.assign(n_local, 0);
+        xi_p.assign(3 * n_local, 0.);
+        proj_step.assign(n_local, 0);
+        st_xlo.assign(n_st, infinity);
+        st_xhi.assign(n_st, -infinity);
+        st_ymax.assign(n_st, -infinity);
+        for (unsigned int s = lo; s < hi; ++s)
+          for (unsigned int f = 0; f < nf; ++f)
+            {
+              const std::size_t i = local_index(s, f);
+              pos[3 * i]          = sx0[s];
+              pos[3 * i + 1]      = fy[f];
+              pos[3 * i + 2]      = fz[f];
+            }
+        for (unsigned int s = st_begin; s < st_end; ++s)
+          compute_station_extents(s);
+
+        // Initial width of the folded profile.
+        initial_width.assign(n_prof, 0.);
+        for (unsigned int s = st_begin; s < st_end; ++s)
+          {
+            double zmin = infinity, zmax = -infinity;
+            for (unsigned int f = 0; f < nf; ++f)
+              {
+                zmin = std::min(zmin, fz[f]);
+                zmax = std::max(zmax, fz[f]);
+              }
+            const unsigned int k = (s > s_impact ? s - s_impact : s_impact - s);
+            initial_width[k] =
+              std::max(initial_width[k], z_sym ? 2. * zmax : zmax - zmin);
+          }
+        dealii::Utilities::MPI::max(initial_width, comm, initial_width);
+
+        rebuild();
+        check_locality();
+        forces_consumed = true;
+
+        const double E0 = 0.5 * projectile.mass() * projectile.velocity() *
+                          projectile.velocity();
+        if (rank == 0)
+          {
+            unsigned long n_pairs = pairs.size();
+            out << std::setprecision(5) << "[dem] " << nf_whole
+                << " fibres (hexagonal packing scale " << packing_scale << "), "
+                << n_whole_stations << " spheres per fibre, spacing "
+                << L0 * 1e6 << " um; modelled: " << nf << " fibres x " << n_st
+                << " cross-sections = " << static_cast<unsigned long>(nf) * n_st
+                << " spheres on " << n_ranks << " rank(s)\n"
+                << "[dem] sphere mass " << sphere_mass << " kg, truss "
+                << "stiffness " << truss_k << " N/m, contact stiffness "
+                << fibre_law.k_n << " N/m (projectile " << projectile_law.k_n
+                << " N/m), rank 0 pairs listed " << n_pairs
+                << ", initial projectile energy " << E0 * 1e3 << " mJ\n";
+          }
+      }
+
+
+      void
+      Model::compute_station_extents(const unsigned int s)
+      {
+        double xlo = infinity, xhi = -infinity, ymax = -infinity;
+        for (unsigned int f = 0; f < nf; ++f)
+          {
+            const std::size_t i = local_index(s, f);
+            xlo                 = std::min(xlo, pos[3 * i]);
+            xhi                 = std::max(xhi, pos[3 * i]);
+            ymax                = std::max(ymax, pos[3 * i + 1]);
+          }
+        st_xlo[s]  = xlo;
+        st_xhi[s]  = xhi;
+        st_ymax[s] = ymax;
+      }
+
+
+      inline void
+      Model::accumulate_criterion(const std::size_t i)
+      {
+        const std::uint32_t b = bin_of[i];
+        const double dx       = pos[3 * i] - pos_build[3 * i];
+        const double dy       = pos[3 * i + 1] - pos_build[3 * i + 1];
+        const double dz       = pos[3 * i + 2] - pos_build[3 * i + 2];
+        const double rx       = dx - D_prev[3 * b];
+        const double ry       = dy - D_prev[3 * b + 1];
+        const double rz       = dz - D_prev[3 * b + 2];
+        r2_max                = std::max(r2_max, rx * rx + ry * ry + rz * rz);
+        D_sum[3 * b] += dx;
+        D_sum[3 * b + 1] += dy;
+        D_sum[3 * b + 2] += dz;
+      }
+
+
+      void
+      Model::drift(const double dt)
+      {
+        const double kick    = pending_kick;
+        pending_kick         = 0.;
+        double *__restrict x = pos.data();
+        double *__restrict v = vel.data();
+        double *__restrict F = frc.data();
+        for (unsigned int s = st_begin; s < st_end; ++s)
+          {
+            const double as      = kick * sinv[s];
+            const double xm      = xmask[s];
+            const std::size_t b0 = local_index(s, 0);
+            double xlo = infinity, xhi = -infinity, ymax = -infinity;
+            for (unsigned int f = 0; f < nf; ++f)
+              {
+                const std::size_t i = b0 + f;
+                const double a      = as * finv[f];
+                v[3 * i] += a * xm * F[3 * i];
+                v[3 * i + 1] += a * F[3 * i + 1];
+                v[3 * i + 2] += a * zmask[f] * F[3 * i + 2];
+                F[3 * i] = F[3 * i + 1] = F[3 * i + 2] = 0.;
+                x[3 * i] += dt * v[3 * i];
+                x[3 * i + 1] += dt * v[3 * i + 1];
+                x[3 * i + 2] += dt * v[3 * i + 2];
+                xlo  = std::min(xlo, x[3 * i]);
+                xhi  = std::max(xhi, x[3 * i]);
+                ymax = std::max(ymax, x[3 * i + 1]);
+                accumulate_criterion(i);
+              }
+            st_xlo[s]  = xlo;
+            st_xhi[s]  = xhi;
+            st_ymax[s] = ymax;
+          }
+        forces_consumed = true;
+      }
+
+
+      void
+      Model::exchange_ghosts(std::vector<double> &v)
+      {
+        if (n_ranks == 1)
+          return;
+        MPI_Request requests[4];
+        unsigned int n = 0;
+        const int tag  = 71;
+        if (rank > 0)
+          {
+            const std::size_t count = 3ul * (st_begin - lo) * nf;
+            MPI_Irecv(v.data(),
+                      count,
+                      MPI_DOUBLE,
+                      rank - 1,
+                      tag,
+                      comm,
+                      &requests[n++]);
+            MPI_Isend(v.data() + 3 * own_b,
+                      count,
+                      MPI_DOUBLE,
+                      rank - 1,
+                      tag,
+                      comm,
+                      &requests[n++]);
+          }
+        if (rank + 1 < n_ranks)
+          {
+            const std::size_t count = 3ul * (hi - st_end) * nf;
+            MPI_Irecv(v.data() + 3 * own_e,
+                      count,
+                      MPI_DOUBLE,
+                      rank + 1,
+                      tag,
+                      comm,
+                      &requests[n++]);
+            MPI_Isend(v.data() + 3 * (own_e - count / 3),
+                      count,
+                      MPI_DOUBLE,
+                      rank + 1,
+                      tag,
+                      comm,
+                      &requests[n++]);
+          }
+        MPI_Waitall(n, requests, MPI_STATUSES_IGNORE);
+      }
+
+
+      void
+      Model::check_locality()
+      {
+        // Global x-extent of every cross-section. Everything below is
+        // evaluated identically on all ranks, so a failure is collective.
+        const std::vector<double> *lo_x = &st_xlo, *hi_x = &st_xhi;
+        std::vector<double> glo, ghi;
+        if (n_ranks > 1)
+          {
+            extent_buffer.assign(2 * n_st, infinity);
+            for (unsigned int s = st_begin; s < st_end; ++s)
+              {
+                extent_buffer[s]        = st_xlo[s];
+                extent_buffer[n_st + s] = -st_xhi[s];
+              }
+            MPI_Allreduce(MPI_IN_PLACE,
+                          extent_buffer.data(),
+                          2 * n_st,
+                          MPI_DOUBLE,
+                          MPI_MIN,
+                          comm);
+            glo.assign(extent_buffer.begin(), extent_buffer.begin() + n_st);
+            ghi.resize(n_st);
+            for (unsigned int s = 0; s < n_st; ++s)
+              ghi[s] = -extent_buffer[n_st + s];
+            lo_x = &glo;
+            hi_x = &ghi;
+          }
+        // Half/quarter: spheres off the plane x = 0 must stay d/2 away from
+        // it, so that no sphere meets the mirror image of another one.
+        if (x_sym && n_st > 1)
+          {
+            double m = infinity;
+            for (unsigned int s = 1; s < n_st; ++s)
+              m = std::min(m, (*lo_x)[s]);
+            if (!(m > radius))
+              throw RunError("[dem] a sphere off the symmetry plane came "
+                             "closer than the fibre radius to x = 0; run the "
+                             "case with Symmetry = none");
+          }
+        if (n_ranks == 1)
+          return;
+        const unsigned int G = prm.ghost_stations;
+        for (unsigned int q = 0; q < n_ranks; ++q)
+          {
+            const unsigned int b = static_cast<unsigned int>(
+              static_cast<unsigned long>(n_st) * q / n_ranks);
+            const unsigned int e = static_cast<unsigned int>(
+              static_cast<unsigned long>(n_st) * (q + 1) / n_ranks);
+            const unsigned int l = (q == 0 ? 0 : b - G);
+            const unsigned int h = (q + 1 == n_ranks ? n_st : e + G);
+            double Xlo = infinity, Xhi = -infinity;
+            for (unsigned int s = b; s < e; ++s)
+              {
+                Xlo = std::min(Xlo, (*lo_x)[s]);
+                Xhi = std::max(Xhi, (*hi_x)[s]);
+              }
+            for (unsigned int t = 0; t < n_st; ++t)
+              if ((t < l || t >= h) &&
+                  !((*lo_x)[t] > Xhi + d || (*hi_x)[t] < Xlo - d))
+                {
+                  std::ostringstream s;
+                  s << "[dem] fibres slid along each other by more than "
+                       "DEM/Ghost stations = "
+                    << G << " cross-sections across an MPI rank boundary "
+                    << "(cross-section " << t
+                    << "); increase DEM/Ghost stations or use fewer ranks";
+                  throw RunError(s.str());
+                }
+          }
+      }
+
+
+      bool
+      Model::lists_valid()
+      {
+        // Criterion (doc/dem.md, "Neighbour lists"): with D_b the reference
+        // displacement of build bin b, r = max |Delta_i - D_b(i)| and
+        // g = max |D_{b+1} - D_b| over consecutive non-empty bins, no
+        // unlisted pair can touch while 2 r + 2 g (+ 2 max|D_b,z| for mirror
+        // pairs) < skin.
+        double g = 0., dz = 0.;
+        int prev = -1;
+        for (unsigned int b = 0; b < n_bins; ++b)
+          {
+            if (bin_count[b] == 0)
+              continue;
+            if (prev >= 0)
+              {
+                const double ex = D_prev[3 * b] - D_prev[3 * prev];
+                const double ey = D_prev[3 * b + 1] - D_prev[3 * prev + 1];
+                const double ez = D_prev[3 * b + 2] - D_prev[3 * prev + 2];
+                g = std::max(g, std::sqrt(ex * ex + ey * ey + ez * ez));
+              }
+            dz   = std::max(dz, std::abs(D_prev[3 * b + 2]));
+            prev = b;
+          }
+        // Rounding of the single-precision build positions.
+        const double margin = 8. * 6e-8 * shared.yarn.length;
+        last_r              = std::sqrt(r2_max);
+        last_g              = g;
+        const double bound =
+          2. * std::sqrt(r2_max) + 2. * g + (z_sym ? 2. * dz : 0.) + margin;
+        // New reference: the mean displacement of each bin.
+        for (unsigned int b = 0; b < n_bins; ++b)
+          if (bin_count[b] > 0)
+            for (unsigned int c = 0; c < 3; ++c)
+              D_prev[3 * b + c] = D_sum[3 * b + c] / bin_count[b];
+        std::fill(D_sum.begin(), D_sum.end(), 0.);
+        r2_max = 0.;
+        return bound < prm.skin;
+      }
+
+
+      void
+      Model::rebuild()
+      {
+        ++n_rebuilds;
+        const double cut2 = cutoff * cutoff;
+        // Bins along x over the local spheres (owned and ghosts).
+        double xmin = infinity, xmax = -infinity;
+        for (std::size_t i = 0; i < n_local; ++i)
+          {
+            xmin = std::min(xmin, pos[3 * i]);
+            xmax = std::max(xmax, pos[3 * i]);
+          }
+        bin_h  = cutoff;
+        bin_x0 = xmin;
+        n_bins = static_cast<unsigned int>((xmax - xmin) / bin_h) + 1;
+        bin_count.assign(n_bins, 0);
+        D_prev.assign(3 * n_bins, 0.);
+        D_sum.assign(3 * n_bins, 0.);
+        r2_max = 0.;
+        for (std::size_t i = 0; i < n_local; ++i)
+          {
+            const auto b =
+              std::min<std::uint32_t>(static_cast<std::uint32_t>(
+                                        (pos[3 * i] - xmin) / bin_h),
+                                      n_bins - 1);
+            bin_of[i] = b;
+            ++bin_count[b];
+            for (unsigned int c = 0; c < 3; ++c)
+              pos_build[3 * i + c] = static_cast<float>(pos[3 * i + c]);
+          }
+        bin_start.assign(n_bins + 1, 0);
+        for (unsigned int b = 0; b < n_bins; ++b)
+          bin_start[b + 1] = bin_start[b] + bin_count[b];
+        bin_sphere.resize(n_local);
+        {
+          std::vector<std::uint32_t> &fill = cell_sphere; // scratch
+          fill.assign(bin_start.begin(), bin_start.end() - 1);
+          for (std::size_t i = 0; i < n_local; ++i)
+            bin_sphere[fill[bin_of[i]]++] = i;
+        }
+        // A 2D (y, z) cell grid in each bin, cells no smaller than the
+        // cut-off, so a 3x3 block of cells holds every partner.
+        bin_y0.resize(n_bins);
+        bin_z0.resize(n_bins);
+        bin_ic.resize(n_bins);
+        bin_ny.resize(n_bins);
+        bin_nz.resize(n_bins);
+        cell_off.assign(n_bins + 1, 0);
+        for (unsigned int b = 0; b < n_bins; ++b)
+          {
+            double y0 = infinity, y1 = -infinity, z0 = infinity, z1 = -infinity;
+            for (std::uint32_t k = bin_start[b]; k < bin_start[b + 1]; ++k)
+              {
+                const std::size_t i = bin_sphere[k];
+                y0                  = std::min(y0, pos[3 * i + 1]);
+                y1                  = std::max(y1, pos[3 * i + 1]);
+                z0                  = std::min(z0, pos[3 * i + 2]);
+                z1                  = std::max(z1, pos[3 * i + 2]);
+              }
+            double c = cutoff;
+            if (bin_count[b] == 0)
+              y0 = y1 = z0 = z1 = 0.;
+            // Limit the cells per bin (a far-flung sphere must not blow up
+            // the grid).
+            while ((y1 - y0) / c * (z1 - z0) / c > 16. * bin_count[b] + 64.)
+              c *= 2.;
+            bin_y0[b]       = y0;
+            bin_z0[b]       = z0;
+            bin_ic[b]       = 1. / c;
+            bin_ny[b]       = static_cast<std::uint32_t>((y1 - y0) / c) + 1;
+            bin_nz[b]       = static_cast<std::uint32_t>((z1 - z0) / c) + 1;
+            cell_off[b + 1] = cell_off[b] + bin_ny[b] * bin_nz[b];
+          }
+        const std::uint32_t n_cells         = cell_off[n_bins];
+        std::vector<std::uint32_t> &cell_of = near_sphere; // scratch
+        cell_of.resize(n_local);
+        cell_start.assign(n_cells + 1, 0);
+        for (std::size_t i = 0; i < n_local; ++i)
+          {
+            const std::uint32_t b = bin_of[i];
+            const auto cy         = static_cast<std::uint32_t>(
+              (pos[3 * i + 1] - bin_y0[b]) * bin_ic[b]);
+            const auto cz = static_cast<std::uint32_t>(
+              (pos[3 * i + 2] - bin_z0[b]) * bin_ic[b]);
+            const std::uint32_t c = cell_off[b] +
+                                    std::min(cy, bin_ny[b] - 1) * bin_nz[b] +
+                                    std::min(cz, bin_nz[b] - 1);
+            cell_of[i] = c;
+            ++cell_start[c + 1];
+          }
+        for (std::uint32_t c = 0; c < n_cells; ++c)
+          cell_start[c + 1] += cell_start[c];
+        cell_sphere.resize(n_local);
+        {
+          std::vector<std::uint32_t> fill(cell_start.begin(),
+                                          cell_start.end() - 1);
+          for (std::size_t i = 0; i < n_local; ++i)
+            cell_sphere[fill[cell_of[i]]++] = i;
+        }
+
+        // Candidate pairs: same bin (j > i) and next bin.
+        found.clear();
+        for (std::size_t i = 0; i < n_local; ++i)
+          {
+            const std::uint32_t b = bin_of[i];
+            const double xi = pos[3 * i], yi = pos[3 * i + 1],
+                         zi = pos[3 * i + 2];
+            for (std::uint32_t bb = b; bb <= b + 1 && bb < n_bins; ++bb)
+              {
+                if (bin_count[bb] == 0)
+                  continue;
+                const long cy =
+                  static_cast<long>(std::floor((yi - bin_y0[bb]) * bin_ic[bb]));
+                const long cz =
+                  static_cast<long>(std::floor((zi - bin_z0[bb]) * bin_ic[bb]));
+                const long ny = bin_ny[bb], nz = bin_nz[bb];
+                for (long a = std::max(0l, cy - 1);
+                     a <= std::min(ny - 1, cy + 1);
+                     ++a)
+                  for (long c = std::max(0l, cz - 1);
+                       c <= std::min(nz - 1, cz + 1);
+                       ++c)
+                    {
+                      const std::uint32_t cell = cell_off[bb] + a * nz + c;
+                      for (std::uint32_t k = cell_start[cell];
+                           k < cell_start[cell + 1];
+                           ++k)
+                        {
+                          const std::size_t j = cell_sphere[k];
+                          if (bb == b && j <= i)
+                            continue;
+                          if (!owned(i) && !owned(j))
+                            continue;
+                          if (j == i + nf || j + nf == i)
+                            continue; // chain neighbours
+                          const double ex = xi - pos[3 * j],
+                                       ey = yi - pos[3 * j + 1],
+                                       ez = zi - pos[3 * j + 2];
+                          if (ex * ex + ey * ey + ez * ez < cut2)
+                            found.emplace_back(std::min<std::size_t>(i, j),
+                                               std::max<std::size_t>(i, j));
+                        }
+                    }
+              }
+          }
+
+        // New CSR list, rows sorted by j; carry the tangential history of
+        // pairs that stay listed.
+        std::swap(pstart, pstart_old);
+        std::swap(pairs, pairs_old);
+        std::swap(pxi, pxi_old);
+        pstart.assign(n_local + 1, 0);
+        for (const auto &p : found)
+          ++pstart[p.first + 1];
+        for (std::size_t i = 0; i < n_local; ++i)
+          pstart[i + 1] += pstart[i];
+        pairs.resize(found.size());
+        pxi.assign(3 * found.size(), 0.);
+        {
+          std::vector<std::uint32_t> &fill = cell_of; // scratch again
+          fill.assign(pstart.begin(), pstart.end() - 1);
+          for (const auto &p : found)
+            pairs[fill[p.first]++] = {p.second, 1.f};
+        }
+        const bool have_old = pstart_old.size() == n_local + 1;
+        for (std::size_t i = 0; i < n_local; ++i)
+          {
+            Pair *row             = pairs.data() + pstart[i];
+            const std::uint32_t n = pstart[i + 1] - pstart[i];
+            std::sort(row, row + n, [](const Pair &a, const Pair &b) {
+              return a.j < b.j;
+            });
+            if (x_sym && lo == 0 && i < nf)
+              for (std::uint32_t k = 0; k < n; ++k)
+                if (row[k].j < nf)
+                  row[k].w *= 0.5f; // both on the plane x = 0
+            if (z_sym && zmask[i % nf] == 0.)
+              for (std::uint32_t k = 0; k < n; ++k)
+                if (zmask[row[k].j % nf] == 0.)
+                  row[k].w *= 0.5f; // both on the plane z = 0
+            if (!have_old)
+              continue;
+            // Merge with the old row.
+            std::uint32_t q = pstart_old[i], q_end = pstart_old[i + 1];
+            for (std::uint32_t k = 0; k < n; ++k)
+              {
+                while (q < q_end && pairs_old[q].j < row[k].j)
+                  ++q;
+                if (q < q_end && pairs_old[q].j == row[k].j &&
+                    pairs_old[q].w < 0.f)
+                  {
+                    row[k].w            = -row[k].w;
+                    const std::size_t p = pstart[i] + k;
+                    for (unsigned int c = 0; c < 3; ++c)
+                      pxi[3 * p + c] = pxi_old[3 * q + c];
+                  }
+              }
+          }
+
+        // Mirror pairs (quarter symmetry): spheres off the plane z = 0 with
+        // the image of another one, or of themselves.
+        if (z_sym)
+          {
+            std::swap(mpairs, mpairs_old);
+            std::swap(mxi, mxi_old);
+            mpairs.clear();
+            near_sphere.clear(); // cell_of no longer needed
+            for (std::uint32_t k = 0; k < n_local; ++k)
+              {
+                const std::size_t i = bin_sphere[k];
+                if (zmask[i % nf] != 0. && pos[3 * i + 2] < cutoff)
+                  near_sphere.push_back(i);
+              }
+            // near_sphere is ordered by bin.
+            for (std::size_t a = 0; a < near_sphere.size(); ++a)
+              for (std::size_t c = a; c < near_sphere.size(); ++c)
+                {
+                  const std::size_t i = near_sphere[a], j = near_sphere[c];
+                  if (bin_of[j] > bin_of[i] + 1)
+                    break;
+                  if (!owned(i) && !owned(j))
+                    continue;
+                  const double ex = pos[3 * i] - pos[3 * j],
+                               ey = pos[3 * i + 1] - pos[3 * j + 1],
+                               ez = pos[3 * i + 2] + pos[3 * j + 2];
+                  if (ex * ex + ey * ey + ez * ez < cut2)
+                    {
+                      const double w =
+                        (x_sym && station_of(i) == 0 && station_of(j) == 0
+                           ? 0.5
+                           : 1.);
+                      mpairs.push_back(
+                        {static_cast<std::uint32_t>(std::min(i, j)),
+                         static_cast<std::uint32_t>(std::max(i, j)),
+                         static_cast<float>(w),
+                         false});
+                    }
+                }
+            std::sort(mpairs.begin(),
+                      mpairs.end(),
+                      [](const MirrorPair &a, const MirrorPair &b) {
+                        return a.i < b.i || (a.i == b.i && a.j < b.j);
+                      });
+            mxi.assign(3 * mpairs.size(), 0.);
+            std::size_t q = 0;
+            for (std::size_t p = 0; p < mpairs.size(); ++p)
+              {
+                while (q < mpairs_old.size() &&
+                       (mpairs_old[q].i < mpairs[p].i ||
+                        (mpairs_old[q].i == mpairs[p].i &&
+                         mpairs_old[q].j < mpairs[p].j)))
+                  ++q;
+                if (q < mpairs_old.size() && mpairs_old[q].i == mpairs[p].i &&
+                    mpairs_old[q].j == mpairs[p].j && mpairs_old[q].active)
+                  {
+                    mpairs[p].active = true;
+                    for (unsigned int c = 0; c < 3; ++c)
+                      mxi[3 * p + c] = mxi_old[3 * q + c];
+                  }
+              }
+          }
+      }
+
+
+      double
+      Model::compute_forces(const Projectile &projectile, const double dt)
+      {
+        ++step_count;
+        exchange_ghosts(pos);
+        exchange_ghosts(vel);
+        // Criterion contributions of the ghosts (the owned ones were added
+        // during the drift).
+        for (std::size_t i = 0; i < own_b; ++i)
+          accumulate_criterion(i);
+        for (std::size_t i = own_e; i < n_local; ++i)
+          accumulate_criterion(i);
+        check_locality();
+        if (!lists_valid())
+          rebuild();
+
+        double *__restrict x = pos.data();
+        double *__restrict v = vel.data();
+        double *__restrict F = frc.data();
+        std::fill(F, F + 3 * own_b, 0.);
+        std::fill(F + 3 * own_e, F + 3 * n_local, 0.);
+        if (!forces_consumed)
+          std::fill(F + 3 * own_b, F + 3 * own_e, 0.);
+        forces_consumed = false;
+
+        double dissipated = 0.;
+
+        // Trusses (s, s+1) with at least one owned end.
+        const unsigned int t_begin = (st_begin > 0 ? st_begin - 1 : 0);
+        const unsigned int t_end   = std::min(st_end, n_st - 1);
+        for (unsigned int s = t_begin; s < t_end; ++s)
+          {
+            const std::size_t b0 = local_index(s, 0);
+            for (unsigned int f = 0; f < nf; ++f)
+              {
+                const std::size_t i = b0 + f, j = i + nf;
+                if (broken[i])
+                  continue;
+                const double e[3] = {x[3 * j] - x[3 * i],
+                                     x[3 * j + 1] - x[3 * i + 1],
+                                     x[3 * j + 2] - x[3 * i + 2]};
+                const double k    = truss_k * fw[f];
+                double t[3];
+                const double strain = truss_force(e, k, L0, t);
+                if (failure && strain > failure_strain)
+                  {
+                    broken[i] = 1;
+                    dissipated +=
+                      own_factor(i, j) * 0.5 * k * strain * strain * L0 * L0;
+                    continue;
+                  }
+                F[3 * i] += t[0];
+                F[3 * i + 1] += t[1];
+                F[3 * i + 2] += t[2];
+                F[3 * j] -= t[0];
+                F[3 * j + 1] -= t[1];
+                F[3 * j + 2] -= t[2];
+              }
+          }
+
+        // Fibre-fibre contacts.
+        const double d2 = d * d;
+        for (std::size_t i = 0; i < n_local; ++i)
+          {
+            const std::uint32_t p0 = pstart[i], p1 = pstart[i + 1];
+            if (p0 == p1)
+              continue;
+            const double xi = x[3 * i], yi = x[3 * i + 1], zi = x[3 * i + 2];
+            double fx = 0., fy_ = 0., fz_ = 0.;
+            for (std::uint32_t p = p0; p < p1; ++p)
+              {
+                const std::size_t j = pairs[p].j;
+                const double ex = xi - x[3 * j], ey = yi - x[3 * j + 1],
+                             ez = zi - x[3 * j + 2];
+                const double r2 = ex * ex + ey * ey + ez * ez;
+                if (r2 >= d2)
+                  {
+                    if (pairs[p].w < 0.f)
+                      {
+                        pairs[p].w     = -pairs[p].w;
+                        pxi[3 * p]     = 0.;
+                        pxi[3 * p + 1] = 0.;
+                        pxi[3 * p + 2] = 0.;
+                      }
+                    continue;
+                  }
+                if (pairs[p].w > 0.f)
+                  pairs[p].w = -pairs[p].w;
+                const double w     = -pairs[p].w;
+                const double dist  = std::sqrt(r2);
+                const double n[3]  = {ex / dist, ey / dist, ez / dist};
+                const double vr[3] = {v[3 * i] - v[3 * j],
+                                      v[3 * i + 1] - v[3 * j + 1],
+                                      v[3 * i + 2] - v[3 * j + 2]};
+                double f[3], diss = 0.;
+                fibre_law.force(d - dist, n, vr, dt, &pxi[3 * p], f, diss);
+                fx += w * f[0];
+                fy_ += w * f[1];
+                fz_ += w * f[2];
+                F[3 * j] -= w * f[0];
+                F[3 * j + 1] -= w * f[1];
+                F[3 * j + 2] -= w * f[2];
+                dissipated += w * own_factor(i, j) * diss;
+              }
+            F[3 * i] += fx;
+            F[3 * i + 1] += fy_;
+            F[3 * i + 2] += fz_;
+          }
+
+        // Mirror pairs (quarter symmetry).
+        for (std::size_t p = 0; p < mpairs.size(); ++p)
+          {
+            MirrorPair &mp      = mpairs[p];
+            const std::size_t i = mp.i, j = mp.j;
+            const double ex = x[3 * i] - x[3 * j],
+                         ey = x[3 * i + 1] - x[3 * j + 1],
+                         ez = x[3 * i + 2] + x[3 * j + 2];
+            const double r2 = ex * ex + ey * ey + ez * ez;
+            if (r2 >= d2)
+              {
+                if (mp.active)
+                  {
+                    mp.active  = false;
+                    mxi[3 * p] = mxi[3 * p + 1] = mxi[3 * p + 2] = 0.;
+                  }
+                continue;
+              }
+            mp.active          = true;
+            const double dist  = std::sqrt(r2);
+            const double n[3]  = {ex / dist, ey / dist, ez / dist};
+            const double vr[3] = {v[3 * i] - v[3 * j],
+                                  v[3 * i + 1] - v[3 * j + 1],
+                                  v[3 * i + 2] + v[3 * j + 2]};
+            double f[3], diss = 0.;
+            fibre_law.force(d - dist, n, vr, dt, &mxi[3 * p], f, diss);
+            const double w = mp.w;
+            F[3 * i] += w * f[0];
+            F[3 * i + 1] += w * f[1];
+            F[3 * i + 2] += w * f[2];
+            if (j != i)
+              {
+                F[3 * j] -= w * f[0];
+                F[3 * j + 1] -= w * f[1];
+                F[3 * j + 2] += w * f[2];
+              }
+            dissipated += w * (i == j ? 0.5 : 1.) * own_factor(i, j) * diss;
+          }
+
+        // Projectile: only cross-sections that can reach it.
+        const double yc = projectile.axis_position();
+        const double vp = projectile.velocity();
+        const double Rr = projectile.radius() + radius;
+        double reaction = 0.;
+        last_yc         = yc;
+        last_Rr         = Rr;
+        for (unsigned int s = st_begin; s < st_end; ++s)
+          {
+            const double ax =
+              (st_xlo[s] > 0. ? st_xlo[s] : (st_xhi[s] < 0. ? -st_xhi[s] : 0.));
+            if (ax >= Rr || st_ymax[s] <= yc - Rr)
+              continue;
+            const std::size_t b0 = local_index(s, 0);
+            for (unsigned int f = 0; f < nf; ++f)
+              {
+                const std::size_t i = b0 + f;
+                const double ex = x[3 * i], ey = x[3 * i + 1] - yc;
+                const double r2 = ex * ex + ey * ey;
+                if (r2 >= Rr * Rr)
+                  continue;
+                if (proj_step[i] + 1 != step_count)
+                  xi_p[3 * i] = xi_p[3 * i + 1] = xi_p[3 * i + 2] = 0.;
+                proj_step[i]       = step_count;
+                const double rho   = std::sqrt(r2);
+                const double n[3]  = {ex / rho, ey / rho, 0.};
+                const double vr[3] = {v[3 * i],
+                                      v[3 * i + 1] - vp,
+                                      v[3 * i + 2]};
+                double fc[3], diss = 0.;
+                projectile_law
+                  .force(Rr - rho, n, vr, dt, &xi_p[3 * i], fc, diss);
+                const double w = fw[f] * sw[s];
+                F[3 * i] += w * fc[0];
+                F[3 * i + 1] += w * fc[1];
+                F[3 * i + 2] += w * fc[2];
+                reaction -= w * fc[1];
+                dissipated += w * diss;
+              }
+          }
+        dissipated_local += dissipated;
+        if (n_ranks > 1)
+          reaction = dealii::Utilities::MPI::sum(reaction, comm);
+        return factor * reaction;
+      }
+
+
+      double
+      Model::truss_strain(const std::size_t i, double *length) const
+      {
+        const std::size_t j = i + nf;
+        const double e[3]   = {pos[3 * j] - pos[3 * i],
+                               pos[3 * j + 1] - pos[3 * i + 1],
+                               pos[3 * j + 2] - pos[3 * i + 2]};
+        const double l = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+        if (length)
+          *length = l;
+        return l / L0 - 1.;
+      }
+
+
+      double
+      Model::velocity_component(const std::size_t i, const unsigned int c) const
+      {
+        const unsigned int s = station_of(i), f = i % nf;
+        const double mask = (c == 0 ? xmask[s] : (c == 2 ? zmask[f] : 1.));
+        return vel[3 * i + c] +
+               pending_kick * sinv[s] * finv[f] * mask * frc[3 * i + c];
+      }
+
+
+      Observables
+      Model::observables() const
+      {
+        Observables o;
+        // Sums: kinetic, elastic, contact, dissipated, failed.
+        double kinetic = 0., elastic = 0., contact = 0., failed = 0.;
+        // Maxima: max strain, then the profile (strain, deflection, width,
+        // position) of n_prof stations.
+        auto &buf = profile_buffer;
+        buf.assign(1 + 4 * n_prof + nf, -infinity);
+        double *fibre_cut = buf.data() + 1 + 4 * n_prof;
+        double *pstrain = buf.data() + 1, *pdefl = pstrain + n_prof,
+               *pwidth = pdefl + n_prof, *ppos = pwidth + n_prof;
+
+        for (unsigned int s = st_begin; s < st_end; ++s)
+          {
+            const unsigned int k = (s > s_impact ? s - s_impact : s_impact - s);
+            double smax = -infinity, defl = -infinity, zmin = infinity,
+                   zmax = -infinity, xsum = 0.;
+            for (unsigned int f = 0; f < nf; ++f)
+              {
+                const std::size_t i = local_index(s, f);
+                const double m      = sphere_mass * fw[f] * sw[s];
+                double v2           = 0.;
+                for (unsigned int c = 0; c < 3; ++c)
+                  {
+                    const double vc = velocity_component(i, c);
+                    v2 += vc * vc;
+                  }
+                kinetic += 0.5 * m * v2;
+                defl = std::max(defl, fy[f] - pos[3 * i + 1]);
+                zmin = std::min(zmin, pos[3 * i + 2]);
+                zmax = std::max(zmax, pos[3 * i + 2]);
+                xsum += std::abs(pos[3 * i]);
+                // Truss to the next station (the last station uses the one
+                // before it for the profile).
+                if (s + 1 < n_st)
+                  {
+                    if (broken[i])
+                      {
+                        failed += factor * fw[f];
+                        fibre_cut[f] = 1.;
+                      }
+                    else
+                      {
+                        double l;
+                        const double e = truss_strain(i, &l);
+                        elastic += 0.5 * truss_k * fw[f] * (l - L0) * (l - L0);
+                        smax = std::max(smax, e);
+                      }
+                  }
+                else if (!broken[i - nf])
+                  smax = std::max(smax, truss_strain(i - nf));
+              }
+            pstrain[k] = std::max(pstrain[k], smax);
+            pdefl[k]   = std::max(pdefl[k], defl);
+            pwidth[k]  = std::max(pwidth[k], z_sym ? 2. * zmax : zmax - zmin);
+            ppos[k]    = std::max(ppos[k], xsum / nf);
+            buf[0]     = std::max(buf[0], smax);
+          }
+        // Truss (st_begin - 1, st_begin) belongs to the rank on the left.
+
+        // Contacts.
+        for (std::size_t i = 0; i < n_local; ++i)
+          for (std::uint32_t p = pstart[i]; p < pstart[i + 1]; ++p)
+            if (pairs[p].w < 0.f)
+              {
+                const std::size_t j = pairs[p].j;
+                double r2           = 0.;
+                for (unsigned int c = 0; c < 3; ++c)
+                  r2 += std::pow(pos[3 * i + c] - pos[3 * j + c], 2);
+                const double delta = std::max(0., d - std::sqrt(r2));
+                contact += -pairs[p].w * own_factor(i, j) *
+                           fibre_law.energy(delta, &pxi[3 * p]);
+              }
+        for (std::size_t p = 0; p < mpairs.size(); ++p)
+          if (mpairs[p].active)
+            {
+              const std::size_t i = mpairs[p].i, j = mpairs[p].j;
+              const double r2 = std::pow(pos[3 * i] - pos[3 * j], 2) +
+                                std::pow(pos[3 * i + 1] - pos[3 * j + 1], 2) +
+                                std::pow(pos[3 * i + 2] + pos[3 * j + 2], 2);
+              const double delta = std::max(0., d - std::sqrt(r2));
+              contact += mpairs[p].w * (i == j ? 0.5 : 1.) * own_factor(i, j) *
+                         fibre_law.energy(delta, &mxi[3 * p]);
+            }
+        // Projectile contacts of the last force evaluation (the positions
+        // have not moved since).
+        for (std::size_t i = own_b; i < own_e; ++i)
+          if (proj_step[i] == step_count && step_count > 0)
+            {
+              const unsigned int s = station_of(i), f = i % nf;
+              const double ex = pos[3 * i], ey = pos[3 * i + 1] - last_yc;
+              const double delta =
+                std::max(0., last_Rr - std::sqrt(ex * ex + ey * ey));
+              contact +=
+                fw[f] * sw[s] * projectile_law.energy(delta, &xi_p[3 * i]);
+            }
+
+        double sums[5] = {kinetic, elastic, contact, dissipated_local, failed};
+        if (n_ranks > 1)
+          {
+            MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, comm);
+            MPI_Allreduce(MPI_IN_PLACE,
+                          buf.data(),
+                          buf.size(),
+                          MPI_DOUBLE,
+                          MPI_MAX,
+                          comm);
+          }
+        o.kinetic_energy    = factor * sums[0];
+        o.elastic_energy    = factor * sums[1];
+        o.contact_energy    = factor * sums[2];
+        o.dissipated_energy = factor * sums[3];
+        o.n_failed          = static_cast<unsigned long>(sums[4] + 0.5);
+        o.max_strain        = std::max(0., buf[0]);
+
+        Analysis::StationProfile profile;
+        profile.resize(n_prof);
+        for (unsigned int k = 0; k < n_prof; ++k)
+          {
+            profile.position[k]      = ppos[k];
+            profile.axial_strain[k]  = pstrain[k];
+            profile.deflection[k]    = pdefl[k];
+            profile.width[k]         = pwidth[k];
+            profile.initial_width[k] = initial_width[k];
+          }
+        o.fronts = Analysis::measure_wave_fronts(profile, shared.wave_fronts);
+        bool all_cut = nf > 0;
+        for (unsigned int f = 0; f < nf; ++f)
+          all_cut = all_cut && fibre_cut[f] > 0.;
+        cut_through = all_cut;
+        return o;
+      }
+      std::string
+      Model::write_snapshot(const std::string &directory,
+                            const unsigned int index,
+                            const double) const
+      {
+        // Owned cross-sections plus the first ghost one on the right, so the
+        // trusses across the rank boundary are drawn.
+        const unsigned int p_end = std::min(st_end + 1, hi);
+        std::vector<float> points;
+        std::vector<std::int32_t> lines;
+        std::vector<VTU::Array> pd(4), cd(3);
+        pd[0] = {"fibre_id", "Int32", 1, {}};
+        pd[1] = {"displacement", "Float32", 3, {}};
+        pd[2] = {"velocity", "Float32", 3, {}};
+        pd[3] = {"axial_strain", "Float32", 1, {}};
+        cd[0] = {"strain", "Float32", 1, {}};
+        cd[1] = {"force", "Float32", 1, {}};
+        cd[2] = {"broken", "UInt8", 1, {}};
+        for (unsigned int s = st_begin; s < p_end; ++s)
+          for (unsigned int f = 0; f < nf; ++f)
+            {
+              const std::size_t i = local_index(s, f);
+              const double X0[3]  = {sx0[s], fy[f], fz[f]};
+              for (unsigned int c = 0; c < 3; ++c)
+                {
+                  points.push_back(static_cast<float>(pos[3 * i + c]));
+                  pd[1].push(pos[3 * i + c] - X0[c]);
+                  pd[2].push(s < st_end ? velocity_component(i, c)
+                                        : vel[3 * i + c]);
+                }
+              pd[0].push(f);
+              double e = 0.;
+              if (s + 1 < n_st && !broken[i])
+                e = std::max(e, truss_strain(i));
+              if (s > lo && !broken[i - nf])
+                e = std::max(e, truss_strain(i - nf));
+              pd[3].push(e);
+              if (s + 1 < p_end)
+                {
+                  const std::int32_t a =
+                    static_cast<std::int32_t>((s - st_begin) * nf + f);
+                  lines.push_back(a);
+                  lines.push_back(a + static_cast<std::int32_t>(nf));
+                  const double strain = truss_strain(i);
+                  cd[0].push(strain);
+                  cd[1].push(broken[i] ? 0. : truss_k * fw[f] * strain * L0);
+                  cd[2].push(static_cast<unsigned int>(broken[i]));
+                }
+            }
+        std::ostringstream base;
+        base << "dem_" << std::setw(4) << std::setfill('0') << index;
+        const std::string piece =
+          base.str() + "_r" + std::to_string(rank) + ".vtu";
+        VTU::write_piece(directory + "/" + piece, points, lines, pd, cd);
+        if (rank == 0)
+          {
+            std::vector<std::string> pieces;
+            for (unsigned int q = 0; q < n_ranks; ++q)
+              pieces.push_back(base.str() + "_r" + std::to_string(q) + ".vtu");
+            VTU::write_record(directory + "/" + base.str() + ".pvtu",
+                              pieces,
+                              pd,
+                              cd);
+          }
+        MPI_Barrier(comm);
+        return base.str() + ".pvtu";
+      }
+    } // namespace
+
+
+    std::string
+    statistics(const ImpactModel &model)
+    {
+      const auto *m = dynamic_cast<const Model *>(&model);
+      return m ? m->statistics() : std::string();
     }
 
-    void
-    Parameters::parse_parameters(dealii::ParameterHandler &prm)
-    {
-      prm.enter_subsection("DEM");
-      prm.leave_subsection();
-    }
 
     std::unique_ptr<ImpactModel>
-    create_model(const YarnImpact::Parameters::Shared &,
-                 const Parameters &,
-                 const MPI_Comm)
+    create_model(const YarnImpact::Parameters::Shared &shared,
+                 const Parameters &parameters,
+                 const MPI_Comm communicator)
     {
-      throw InputError("Parameter 'Model' = dem: the DEM model is not "
-                       "available in this build yet.");
+      return std::make_unique<Model>(shared, parameters, communicator);
     }
   } // namespace DEM
 } // namespace YarnImpact

@@ -7,6 +7,7 @@
 #include <mpi.h>
 
 #include <memory>
+#include <string>
 
 namespace dealii
 {
@@ -18,9 +19,50 @@ namespace YarnImpact
   /** The microscopic discrete-element reference model (design.md section 6). */
   namespace DEM
   {
-    /** Parameters of the DEM model (subsection `DEM`). */
+    /** Where the fibre centres come from. */
+    enum class FibreLayout
+    {
+      hexagonal, ///< hexagonal packing inside the (scaled) ellipse
+      file,      ///< (y, z) centres read from a file
+    };
+
+    /**
+     * Parameters of the DEM model (subsection `DEM`); doc/dem.md explains
+     * every default.
+     */
     struct Parameters
     {
+      /** Fibre layout (`Fibre layout`). */
+      FibreLayout layout = FibreLayout::hexagonal;
+      /** File with one `y z` fibre centre per line [m] (`Fibre file`). */
+      std::string fibre_file;
+      /** Largest factor by which the ellipse may be enlarged so that the
+       * hexagonal packing holds exactly N fibres [-]. */
+      double max_packing_scale = 1.1;
+      /** Largest distance between two spheres of a fibre [m]. */
+      double sphere_spacing = 12e-6;
+      /** Fibre-fibre normal penalty stiffness over the truss stiffness
+       * \f$EA/L_0\f$ [-]. */
+      double normal_stiffness_ratio = 0.5;
+      /** Tangential over normal contact stiffness [-]. */
+      double tangential_stiffness_ratio = 2. / 7.;
+      /** Fibre-fibre normal damping, fraction of critical [-]. */
+      double damping_ratio = 0.1;
+      /** Fibre-fibre Coulomb friction coefficient [-]. */
+      double friction = 0.2;
+      /** Projectile-fibre normal stiffness over the truss stiffness [-]. */
+      double projectile_stiffness_ratio = 0.5;
+      /** Projectile-fibre normal damping, fraction of critical [-]. */
+      double projectile_damping_ratio = 0.1;
+      /** Projectile-fibre Coulomb friction coefficient [-]. */
+      double projectile_friction = 0.2;
+      /** Verlet skin of the neighbour lists [m]. */
+      double skin = 2e-6;
+      /** Contacts per sphere assumed by the stable time step [-]. */
+      unsigned int coordination = 6;
+      /** Cross-sections copied from each neighbouring rank [-]. */
+      unsigned int ghost_stations = 12;
+
       static void
       declare_parameters(dealii::ParameterHandler &prm);
       void
@@ -32,6 +74,11 @@ namespace YarnImpact
     create_model(const YarnImpact::Parameters::Shared &shared,
                  const Parameters &parameters,
                  const MPI_Comm communicator);
+
+    /** Neighbour-list statistics of a DEM model (rebuilds, pairs), for the
+     * benchmark; empty for another model. */
+    std::string
+    statistics(const ImpactModel &model);
   } // namespace DEM
 } // namespace YarnImpact
 

@@ -1,0 +1,103 @@
+// Throughput benchmark of the DEM step (not a test): sphere-steps per second
+// and peak memory for a yarn of 400 fibres, half symmetry.
+//
+//   mpirun -np 2 build/bench_dem_throughput [length_m=0.004] [steps=400]
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/core/projectile.h>
+#include <yarn_impact/dem/dem_model.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+namespace
+{
+  /** Peak resident memory of this process (VmHWM) [MB]. */
+  double
+  peak_memory_mb()
+  {
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    while (std::getline(in, line))
+      if (line.rfind("VmHWM:", 0) == 0)
+        {
+          std::istringstream s(line.substr(6));
+          double kb = 0.;
+          s >> kb;
+          return kb / 1024.;
+        }
+    return 0.;
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  using namespace YarnImpact;
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const bool is_root  = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  const double length = (argc > 1 ? std::stod(argv[1]) : 0.004);
+  const unsigned int n_steps =
+    (argc > 2 ? static_cast<unsigned int>(std::stoul(argv[2])) : 400);
+
+  Parameters::Shared shared;
+  shared.general.model    = Parameters::ModelType::dem;
+  shared.general.symmetry = Parameters::Symmetry::half;
+  shared.yarn.length      = length;
+  shared.projectile.diameter =
+    std::min(shared.projectile.diameter, 0.5 * length);
+  DEM::Parameters dem;
+  if (argc > 3)
+    dem.skin = std::stod(argv[3]);
+
+  auto model = DEM::create_model(shared, dem, comm);
+  Projectile projectile(shared.projectile, shared.yarn.thickness_semi_axis);
+  std::ostringstream setup_log;
+  model->setup(projectile, setup_log);
+  if (is_root)
+    std::cout << setup_log.str();
+  const double dt = shared.time.safety_factor * model->stable_time_step();
+  double force    = model->compute_forces(projectile, dt);
+  const double memory_setup = peak_memory_mb();
+
+  MPI_Barrier(comm);
+  dealii::Timer timer;
+  for (unsigned int step = 0; step < n_steps; ++step)
+    {
+      model->kick(0.5 * dt);
+      projectile.kick(0.5 * dt, force);
+      model->drift(dt);
+      projectile.drift(dt);
+      force = model->compute_forces(projectile, dt);
+      model->kick(0.5 * dt);
+      projectile.kick(0.5 * dt, force);
+    }
+  MPI_Barrier(comm);
+  const double wall = timer.wall_time();
+  (void)memory_setup;
+  const double memory_max = dealii::Utilities::MPI::max(peak_memory_mb(), comm);
+  const double memory_sum = dealii::Utilities::MPI::sum(peak_memory_mb(), comm);
+  const auto obs          = model->observables();
+  const unsigned long n_whole = model->n_elements() / shared.yarn.n_fibres;
+  const unsigned long modelled =
+    shared.yarn.n_fibres * ((n_whole - 1) / 2 + 1); // half symmetry
+  if (is_root)
+    std::cout << std::setprecision(4) << "length " << length * 1e3
+              << " mm, ranks " << dealii::Utilities::MPI::n_mpi_processes(comm)
+              << ", modelled spheres " << modelled << ", steps " << n_steps
+              << ", dt " << dt * 1e9 << " ns, wall " << wall << " s\n"
+              << "throughput " << modelled * double(n_steps) / wall / 1e6
+              << " million sphere-steps/s\n"
+              << "peak memory " << memory_max << " MB per rank (max), "
+              << memory_sum << " MB all ranks\n"
+              << DEM::statistics(*model) << "\n"
+              << "projectile velocity " << projectile.impact_speed()
+              << " m/s, max strain " << obs.max_strain << "\n";
+  return 0;
+}

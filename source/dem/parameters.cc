@@ -1,0 +1,150 @@
+#include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/dem/dem_model.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace YarnImpact
+{
+  namespace DEM
+  {
+    using namespace dealii;
+
+    void
+    Parameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("DEM");
+      prm.declare_entry(
+        "Fibre layout",
+        "hexagonal",
+        Patterns::Selection("hexagonal|file"),
+        "hexagonal: Yarn/Number of fibres centres of a hexagonal lattice of "
+        "spacing Yarn/Fibre diameter inside the yarn's ellipse, enlarged "
+        "just enough to hold them; file: the centres are read from DEM/Fibre "
+        "file.");
+      prm.declare_entry("Fibre file",
+                        "",
+                        Patterns::Anything(),
+                        "File with one fibre centre 'y z' per line, in "
+                        "metres (y: thickness, z: width); '#' starts a "
+                        "comment. Used when Fibre layout = file.");
+      prm.declare_entry(
+        "Maximum packing scale",
+        "1.1",
+        Patterns::Double(),
+        "Largest factor by which the yarn's ellipse may be enlarged so that "
+        "the hexagonal packing holds exactly Yarn/Number of fibres fibres "
+        "without overlap; beyond it the input is rejected [-].");
+      prm.declare_entry("Sphere spacing",
+                        "12e-6",
+                        Patterns::Double(),
+                        "Largest distance between two consecutive spheres "
+                        "of a fibre; the yarn length is divided into an even "
+                        "number of equal trusses no longer than this. It "
+                        "must not exceed Yarn/Fibre diameter [m].");
+      prm.declare_entry("Normal stiffness ratio",
+                        "0.5",
+                        Patterns::Double(),
+                        "Fibre-fibre normal penalty stiffness divided by the "
+                        "truss stiffness E A / L0 [-].");
+      prm.declare_entry("Tangential stiffness ratio",
+                        "0.2857142857142857",
+                        Patterns::Double(),
+                        "Tangential contact stiffness divided by the normal "
+                        "one (both contact kinds) [-].");
+      prm.declare_entry("Damping ratio",
+                        "0.1",
+                        Patterns::Double(),
+                        "Viscous damping of fibre-fibre contacts as a "
+                        "fraction of critical damping, in [0, 1) [-].");
+      prm.declare_entry("Friction coefficient",
+                        "0.2",
+                        Patterns::Double(),
+                        "Coulomb friction coefficient between fibres [-].");
+      prm.declare_entry("Projectile stiffness ratio",
+                        "0.5",
+                        Patterns::Double(),
+                        "Projectile-fibre normal penalty stiffness divided "
+                        "by the truss stiffness E A / L0 [-].");
+      prm.declare_entry("Projectile damping ratio",
+                        "0.1",
+                        Patterns::Double(),
+                        "Viscous damping of projectile-fibre contacts as a "
+                        "fraction of critical damping, in [0, 1) [-].");
+      prm.declare_entry("Projectile friction coefficient",
+                        "0.2",
+                        Patterns::Double(),
+                        "Coulomb friction coefficient between the projectile "
+                        "and the fibres [-].");
+      prm.declare_entry("Skin",
+                        "2e-6",
+                        Patterns::Double(),
+                        "Verlet skin: pairs closer than the fibre diameter "
+                        "plus this distance are listed; the lists are rebuilt "
+                        "only when the proven bound on relative motion "
+                        "reaches it [m].");
+      prm.declare_entry("Coordination number",
+                        "6",
+                        Patterns::Integer(),
+                        "Number of fibre-fibre contacts per sphere assumed by "
+                        "the stable time step estimate [-].");
+      prm.declare_entry("Ghost stations",
+                        "12",
+                        Patterns::Integer(),
+                        "Cross-sections copied from each neighbouring MPI "
+                        "rank every step; it bounds how far fibres may slide "
+                        "along each other across a rank boundary [-].");
+      prm.leave_subsection();
+    }
+
+    void
+    Parameters::parse_parameters(ParameterHandler &prm)
+    {
+      using YarnImpact::Parameters::get_positive_double;
+      using YarnImpact::Parameters::get_positive_integer;
+      using YarnImpact::Parameters::require;
+      prm.enter_subsection("DEM");
+      layout     = (prm.get("Fibre layout") == "file" ? FibreLayout::file
+                                                      : FibreLayout::hexagonal);
+      fibre_file = prm.get("Fibre file");
+      require(layout != FibreLayout::file || !fibre_file.empty(),
+              "DEM/Fibre file",
+              "must name a file when DEM/Fibre layout = file");
+      max_packing_scale =
+        get_positive_double(prm, "DEM", "Maximum packing scale");
+      require(max_packing_scale >= 1.,
+              "DEM/Maximum packing scale",
+              "must be at least 1");
+      sphere_spacing = get_positive_double(prm, "DEM", "Sphere spacing");
+      normal_stiffness_ratio =
+        get_positive_double(prm, "DEM", "Normal stiffness ratio");
+      tangential_stiffness_ratio = prm.get_double("Tangential stiffness ratio");
+      require(tangential_stiffness_ratio >= 0.,
+              "DEM/Tangential stiffness ratio",
+              "must not be negative");
+      damping_ratio = prm.get_double("Damping ratio");
+      require(damping_ratio >= 0. && damping_ratio < 1.,
+              "DEM/Damping ratio",
+              "must be in [0, 1)");
+      friction = prm.get_double("Friction coefficient");
+      require(friction >= 0.,
+              "DEM/Friction coefficient",
+              "must not be negative");
+      projectile_stiffness_ratio =
+        get_positive_double(prm, "DEM", "Projectile stiffness ratio");
+      projectile_damping_ratio = prm.get_double("Projectile damping ratio");
+      require(projectile_damping_ratio >= 0. && projectile_damping_ratio < 1.,
+              "DEM/Projectile damping ratio",
+              "must be in [0, 1)");
+      projectile_friction = prm.get_double("Projectile friction coefficient");
+      require(projectile_friction >= 0.,
+              "DEM/Projectile friction coefficient",
+              "must not be negative");
+      skin         = get_positive_double(prm, "DEM", "Skin");
+      const long c = prm.get_integer("Coordination number");
+      require(c >= 0, "DEM/Coordination number", "must not be negative");
+      coordination   = static_cast<unsigned int>(c);
+      ghost_stations = get_positive_integer(prm, "DEM", "Ghost stations");
+      prm.leave_subsection();
+    }
+  } // namespace DEM
+} // namespace YarnImpact
