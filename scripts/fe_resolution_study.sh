@@ -5,7 +5,7 @@
 # projectile velocity at 10, 20, 25 and 30 us, the first cell failure and
 # the cut-through time.
 # Usage: scripts/fe_resolution_study.sh [BUILD_DIR] [OUT_DIR]
-set -euo pipefail
+set -uo pipefail
 build=${1:-build}
 out=${2:-results/fe_resolution}
 mkdir -p "$out"
@@ -36,14 +36,16 @@ rows = list(csv.DictReader(open(d + "/history_fe.csv")))
 def v(t):
     r = min(rows, key=lambda r: abs(float(r["t [us]"]) - t))
     return float(r["projectile velocity [m/s]"])
-fail = next((float(r["t [us]"]) for r in rows if int(r["failed elements"]) > 0), None)
+fail = next((round(float(r["t [us]"]), 2) for r in rows if int(r["failed elements"]) > 0), None)
 cut = None
 for line in open(d + "/summary.txt"):
     if "yarn cut through:" in line and "us" in line:
         cut = float(line.split()[-2])
 cells = 12 * 4 ** section * axial
+error = [l.split("error: ", 1)[1].strip() for l in open(d + ".log") if "error: " in l]
 print(f"| {axial} | {section} | {cells} | {v(10):.2f} | {v(20):.2f} | {v(25):.2f} | {v(30):.2f} | "
-      f"{fail if fail is not None else 'none'} | {cut if cut is not None else 'no'} | {wall:.0f} |")
+      f"{fail if fail is not None else 'none'} | {cut if cut is not None else 'no'} | {wall:.0f} |"
+      + (f" stopped: {error[0]}" if error else ""))
 PY
   done
 done

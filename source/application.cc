@@ -208,9 +208,10 @@ namespace YarnImpact
         else
           models = {parameters.shared.general.model};
 
-        bool                                 passed = true;
-        std::ostringstream                   summary_text;
+        bool passed = true;
+        std::ostringstream summary_text;
         std::vector<std::vector<HistoryRow>> histories;
+        double mass_per_length[2] = {0., 0.}, axial_stiffness[2] = {0., 0.};
         for (const auto type : models)
           {
             ImpactSimulation simulation(parameters.shared,
@@ -219,16 +220,19 @@ namespace YarnImpact
                                         out);
             const RunSummary summary = simulation.run();
             print_summary(summary, summary_text);
-            passed = passed && summary.checks_passed;
+            passed                            = passed && summary.checks_passed;
+            mass_per_length[histories.size()] = summary.mass_per_length;
+            axial_stiffness[histories.size()] = summary.axial_stiffness;
             histories.push_back(simulation.history());
           }
         if (histories.size() == 2 && is_root)
           {
-            const auto comparison =
-              Analysis::compare_models(histories[0],
-                                       histories[1],
-                                       output.directory);
+            const auto comparison = Analysis::compare_models(histories[0],
+                                                             histories[1],
+                                                             output.directory);
             Analysis::print_comparison(comparison,
+                                       mass_per_length,
+                                       axial_stiffness,
                                        histories[0],
                                        histories[1],
                                        summary_text);

@@ -22,22 +22,23 @@ namespace YarnImpact
           return rows.front();
         if (t >= rows.back().time)
           return rows.back();
-        const auto it = std::lower_bound(rows.begin(),
-                                         rows.end(),
-                                         t,
-                                         [](const HistoryRow &r,
-                                            const double      x) {
-                                           return r.time < x;
-                                         });
+        const auto it =
+          std::lower_bound(rows.begin(),
+                           rows.end(),
+                           t,
+                           [](const HistoryRow &r, const double x) {
+                             return r.time < x;
+                           });
         const HistoryRow &b = *it;
         const HistoryRow &a = *(it - 1);
-        const double      w = (t - a.time) / (b.time - a.time);
-        const auto mix = [w](const double x, const double y) {
+        const double w      = (t - a.time) / (b.time - a.time);
+        const auto mix      = [w](const double x, const double y) {
           return (1. - w) * x + w * y;
         };
         HistoryRow r = a;
         r.time       = t;
-        r.projectile_velocity = mix(a.projectile_velocity, b.projectile_velocity);
+        r.projectile_velocity =
+          mix(a.projectile_velocity, b.projectile_velocity);
         r.model.fronts.longitudinal =
           mix(a.model.fronts.longitudinal, b.model.fronts.longitudinal);
         r.model.fronts.transverse =
@@ -63,16 +64,15 @@ namespace YarnImpact
     ComparisonSummary
     compare_models(const std::vector<HistoryRow> &fe,
                    const std::vector<HistoryRow> &dem,
-                   const std::string             &directory)
+                   const std::string &directory)
     {
       ComparisonSummary s;
       s.first_dem_break  = first_failure(dem);
       s.first_fe_failure = first_failure(fe);
-      const double end = std::min(fe.empty() ? 0. : fe.back().time,
+      const double end   = std::min(fe.empty() ? 0. : fe.back().time,
                                   dem.empty() ? 0. : dem.back().time);
-      s.compared_until = (s.first_dem_break >= 0. ?
-                            std::min(s.first_dem_break, end) :
-                            end);
+      s.compared_until =
+        (s.first_dem_break >= 0. ? std::min(s.first_dem_break, end) : end);
 
       std::ofstream csv(directory + "/comparison.csv");
       csv << "t [us],v FE [m/s],v DEM [m/s],v FE - v DEM [m/s],"
@@ -85,8 +85,8 @@ namespace YarnImpact
         {
           if (row.time > end)
             break;
-          const HistoryRow d  = interpolate(dem, row.time);
-          const double     dv = row.projectile_velocity - d.projectile_velocity;
+          const HistoryRow d = interpolate(dem, row.time);
+          const double dv    = row.projectile_velocity - d.projectile_velocity;
           if (row.time <= s.compared_until &&
               std::abs(dv) > s.max_velocity_difference)
             {
@@ -107,13 +107,21 @@ namespace YarnImpact
 
 
     void
-    print_comparison(const ComparisonSummary       &s,
+    print_comparison(const ComparisonSummary &s,
+                     const double (&mass_per_length)[2],
+                     const double (&axial_stiffness)[2],
                      const std::vector<HistoryRow> &fe,
                      const std::vector<HistoryRow> &dem,
-                     std::ostream                  &out)
+                     std::ostream &out)
     {
       out << std::fixed << std::setprecision(4)
           << "Comparison of the FE and DEM models\n"
+          << "  mass per length [mg/m]:     FE " << mass_per_length[0] * 1e6
+          << ", DEM " << mass_per_length[1] * 1e6 << " (FE/DEM - 1 = "
+          << 100. * (mass_per_length[0] / mass_per_length[1] - 1.) << " %)\n"
+          << "  axial stiffness EA [N]:     FE " << axial_stiffness[0]
+          << ", DEM " << axial_stiffness[1] << " (FE/DEM - 1 = "
+          << 100. * (axial_stiffness[0] / axial_stiffness[1] - 1.) << " %)\n"
           << "  largest |v_FE - v_DEM| up to " << s.compared_until * 1e6
           << " us: " << s.max_velocity_difference << " m/s at "
           << s.time_of_max_difference * 1e6 << " us\n"

@@ -233,6 +233,8 @@ namespace YarnImpact
     RunSummary summary;
     summary.model_name        = name;
     summary.regression_format = testing;
+    summary.mass_per_length   = model->mass() / p.yarn.length;
+    summary.axial_stiffness   = axial.axial_stiffness();
     double next_history       = p.output.history_interval;
     double next_snapshot      = p.output.snapshot_interval;
     double last_progress      = 0.;
@@ -298,7 +300,7 @@ namespace YarnImpact
                 !std::isfinite(m.elastic_energy) ||
                 !std::isfinite(m.contact_energy) ||
                 !std::isfinite(m.dissipated_energy))
-              fail("an energy is not a number");
+              fail("an energy is not a number (an inverted cell or a blow-up)");
             if (std::abs(row.energy_error) > p.time.energy_error_limit)
               {
                 std::ostringstream s;

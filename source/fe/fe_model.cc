@@ -697,6 +697,14 @@ namespace YarnImpact
               dissipated += cell_energy;
               continue;
             }
+          if (failure && !std::isfinite(cell_energy))
+            {
+              // An inverted cell (J <= 0) among the broken ends of a cut
+              // yarn: it is eroded, as explicit impact codes do. Without
+              // failure the NaN stops the run instead.
+              cell_failed[c] = 1;
+              continue;
+            }
           energy += cell_energy;
           for (unsigned int k = 0; k < n_cell_dofs; ++k)
             force.local_element(dofs[k]) -= f[k];

@@ -36,14 +36,20 @@ namespace YarnImpact
     ComparisonSummary
     compare_models(const std::vector<HistoryRow> &fe,
                    const std::vector<HistoryRow> &dem,
-                   const std::string             &directory);
+                   const std::string &directory);
 
-    /** Write @p summary and the end-of-run energy budgets of both models. */
+    /**
+     * Write @p summary, the two models' mass per length and axial stiffness
+     * side by side (physics.md section 1.8), and the end-of-run energy
+     * budgets of both models.
+     */
     void
-    print_comparison(const ComparisonSummary       &summary,
+    print_comparison(const ComparisonSummary &summary,
+                     const double (&mass_per_length)[2],
+                     const double (&axial_stiffness)[2],
                      const std::vector<HistoryRow> &fe,
                      const std::vector<HistoryRow> &dem,
-                     std::ostream                  &out);
+                     std::ostream &out);
   } // namespace Analysis
 } // namespace YarnImpact
 

@@ -30,6 +30,10 @@ namespace YarnImpact
   struct RunSummary
   {
     std::string model_name;
+    /** Mass per length of the yarn as discretised [kg/m]. */
+    double mass_per_length = 0.;
+    /** Axial stiffness EA of the yarn as discretised [N]. */
+    double axial_stiffness    = 0.;
     unsigned long n_steps     = 0;
     double end_time           = 0.;  ///< [s]
     double wall_time          = 0.;  ///< [s]
