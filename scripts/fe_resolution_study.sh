@@ -42,7 +42,7 @@ for line in open(d + "/summary.txt"):
     if "yarn cut through:" in line and "us" in line:
         cut = float(line.split()[-2])
 cells = 12 * 4 ** section * axial
-error = [l.split("error: ", 1)[1].strip() for l in open(d + ".log") if "error: " in l]
+error = [l.split("yarn-impact: error: ", 1)[1].strip() for l in open(d + ".log") if "yarn-impact: error: " in l]
 print(f"| {axial} | {section} | {cells} | {v(10):.2f} | {v(20):.2f} | {v(25):.2f} | {v(30):.2f} | "
       f"{fail if fail is not None else 'none'} | {cut if cut is not None else 'no'} | {wall:.0f} |"
       + (f" stopped: {error[0]}" if error else ""))

@@ -211,6 +211,7 @@ namespace YarnImpact
         bool passed = true;
         std::ostringstream summary_text;
         std::vector<std::vector<HistoryRow>> histories;
+        std::string run_errors;
         double mass_per_length[2] = {0., 0.}, axial_stiffness[2] = {0., 0.};
         for (const auto type : models)
           {
@@ -218,11 +219,27 @@ namespace YarnImpact
                                         create_model(type, parameters),
                                         MPI_COMM_WORLD,
                                         out);
-            const RunSummary summary = simulation.run();
-            print_summary(summary, summary_text);
-            passed                            = passed && summary.checks_passed;
-            mass_per_length[histories.size()] = summary.mass_per_length;
-            axial_stiffness[histories.size()] = summary.axial_stiffness;
+            try
+              {
+                const RunSummary summary = simulation.run();
+                print_summary(summary, summary_text);
+                passed = passed && summary.checks_passed;
+              }
+            catch (const RunError &e)
+              {
+                // With both models, a model that fails still leaves its
+                // history up to the failure to the comparison.
+                if (models.size() == 1)
+                  throw;
+                run_errors +=
+                  std::string(run_errors.empty() ? "" : " ") + e.what();
+                summary_text << "The " << simulation.model().name()
+                             << " model stopped early: " << e.what() << '\n';
+              }
+            mass_per_length[histories.size()] =
+              simulation.model().mass() / parameters.shared.yarn.length;
+            axial_stiffness[histories.size()] =
+              simulation.model().axial_properties().axial_stiffness();
             histories.push_back(simulation.history());
           }
         if (histories.size() == 2 && is_root)
@@ -253,6 +270,8 @@ namespace YarnImpact
             std::ofstream f(output.directory + "/summary.txt");
             f << summary_text.str();
           }
+        if (!run_errors.empty())
+          throw RunError(run_errors);
         if (!passed)
           {
             if (is_root)

@@ -489,7 +489,8 @@ namespace YarnImpact
   const std::vector<HistoryRow> &
   ImpactSimulation::history() const
   {
-    return impl->history->rows();
+    static const std::vector<HistoryRow> none;
+    return impl->history ? impl->history->rows() : none;
   }
 
   const ImpactModel &
