@@ -40,14 +40,24 @@ namespace YarnImpact
         float w;
       };
 
-      /** A pair of a sphere with the mirror image (in z = 0) of another one,
-       * or of itself (quarter symmetry). */
+      /** A pair of a sphere with the mirror image of another one, or of
+       * itself: in x = 0 (half and quarter symmetry, axes bit 1), in z = 0
+       * (quarter, bit 2) or in both (quarter, bits 1 | 2). The image of j is
+       * (sx x_j, y_j, sz z_j) with sx = -1 for bit 1 and sz = -1 for bit 2. */
       struct MirrorPair
       {
         std::uint32_t i, j;
         float w;
+        std::uint8_t axes;
         bool active;
       };
+
+      inline bool
+      mirror_less(const MirrorPair &a, const MirrorPair &b)
+      {
+        return a.i < b.i ||
+               (a.i == b.i && (a.j < b.j || (a.j == b.j && a.axes < b.axes)));
+      }
 
 
       class Model : public ImpactModel
@@ -207,7 +217,7 @@ namespace YarnImpact
 
         // Scratch of the rebuild (kept to avoid reallocation).
         std::vector<std::uint32_t> bin_start, bin_sphere, cell_off, cell_start,
-          cell_sphere, near_sphere;
+          cell_sphere, near_sphere, near_x;
         std::vector<double> bin_y0, bin_z0, bin_ic;
         std::vector<std::uint32_t> bin_ny, bin_nz;
         std::vector<std::pair<std::uint32_t, std::uint32_t>> found;
@@ -638,17 +648,20 @@ namespace YarnImpact
             lo_x = &glo;
             hi_x = &ghi;
           }
-        // Half/quarter: spheres off the plane x = 0 must stay d/2 away from
-        // it, so that no sphere meets the mirror image of another one.
+        // Half/quarter: a sphere off the plane x = 0 meets the mirror images
+        // of the others (and its own) through the mirror pairs; only a
+        // sphere that crosses the plane cannot be represented: it has
+        // passed through its own mirror image (an overlap of a whole
+        // diameter), and the mirror search assumes x >= 0.
         if (x_sym && n_st > 1)
           {
             double m = infinity;
             for (unsigned int s = 1; s < n_st; ++s)
               m = std::min(m, (*lo_x)[s]);
-            if (!(m > radius))
-              throw RunError("[dem] a sphere off the symmetry plane came "
-                             "closer than the fibre radius to x = 0; run the "
-                             "case with Symmetry = none");
+            if (!(m > 0.))
+              throw RunError("[dem] a sphere off the symmetry plane crossed "
+                             "x = 0 (it passed through its own mirror "
+                             "image); run the case with Symmetry = none");
           }
         if (n_ranks == 1)
           return;
@@ -690,7 +703,7 @@ namespace YarnImpact
         // displacement of build bin b, r = max |Delta_i - D_b(i)| and
         // g = max |D_{b+1} - D_b| over consecutive non-empty bins, no
         // unlisted pair can touch while 2 r + 2 g (+ 2 max|D_b,z| for mirror
-        // pairs) < skin.
+        // pairs in z = 0, + 2 |D_0,x| for mirror pairs in x = 0) < skin.
         double g = 0., dz = 0.;
         int prev = -1;
         for (unsigned int b = 0; b < n_bins; ++b)
@@ -711,8 +724,11 @@ namespace YarnImpact
         const double margin = 8. * 6e-8 * shared.yarn.length;
         last_r              = std::sqrt(r2_max);
         last_g              = g;
-        const double bound =
-          2. * std::sqrt(r2_max) + 2. * g + (z_sym ? 2. * dz : 0.) + margin;
+        // Mirror pairs in x = 0: 2 |D_0,x| of bin 0 (which starts at x = 0).
+        const double dx0 =
+          (x_sym && lo == 0 && n_bins > 0 ? std::abs(D_prev[0]) : 0.);
+        const double bound = 2. * std::sqrt(r2_max) + 2. * g +
+                             (z_sym ? 2. * dz : 0.) + 2. * dx0 + margin;
         // New reference: the mean displacement of each bin.
         for (unsigned int b = 0; b < n_bins; ++b)
           if (bin_count[b] > 0)
@@ -923,13 +939,34 @@ namespace YarnImpact
               }
           }
 
-        // Mirror pairs (quarter symmetry): spheres off the plane z = 0 with
-        // the image of another one, or of themselves.
+        // Mirror pairs: spheres with the image of another one, or of
+        // themselves, in the symmetry planes (doc/dem.md section 4: the
+        // candidates below are every pair whose image distance can drop
+        // below d while the criterion holds).
+        std::swap(mpairs, mpairs_old);
+        std::swap(mxi, mxi_old);
+        mpairs.clear();
+        const auto add_mirror = [&](const std::size_t i,
+                                    const std::size_t j,
+                                    const std::uint8_t axes,
+                                    const double w) {
+          if (!owned(i) && !owned(j))
+            return;
+          const double sx = (axes & 1) ? -1. : 1., sz = (axes & 2) ? -1. : 1.;
+          const double ex = pos[3 * i] - sx * pos[3 * j],
+                       ey = pos[3 * i + 1] - pos[3 * j + 1],
+                       ez = pos[3 * i + 2] - sz * pos[3 * j + 2];
+          if (ex * ex + ey * ey + ez * ez < cut2)
+            mpairs.push_back({static_cast<std::uint32_t>(std::min(i, j)),
+                              static_cast<std::uint32_t>(std::max(i, j)),
+                              static_cast<float>(w),
+                              axes,
+                              false});
+        };
+        // In z = 0 (quarter): spheres off that plane within the cut-off of
+        // it, in the same or the next bin.
         if (z_sym)
           {
-            std::swap(mpairs, mpairs_old);
-            std::swap(mxi, mxi_old);
-            mpairs.clear();
             near_sphere.clear(); // cell_of no longer needed
             for (std::uint32_t k = 0; k < n_local; ++k)
               {
@@ -944,45 +981,51 @@ namespace YarnImpact
                   const std::size_t i = near_sphere[a], j = near_sphere[c];
                   if (bin_of[j] > bin_of[i] + 1)
                     break;
-                  if (!owned(i) && !owned(j))
-                    continue;
-                  const double ex = pos[3 * i] - pos[3 * j],
-                               ey = pos[3 * i + 1] - pos[3 * j + 1],
-                               ez = pos[3 * i + 2] + pos[3 * j + 2];
-                  if (ex * ex + ey * ey + ez * ez < cut2)
-                    {
-                      const double w =
-                        (x_sym && station_of(i) == 0 && station_of(j) == 0
-                           ? 0.5
-                           : 1.);
-                      mpairs.push_back(
-                        {static_cast<std::uint32_t>(std::min(i, j)),
-                         static_cast<std::uint32_t>(std::max(i, j)),
-                         static_cast<float>(w),
-                         false});
-                    }
+                  add_mirror(i,
+                             j,
+                             2,
+                             x_sym && station_of(i) == 0 && station_of(j) == 0
+                               ? 0.5
+                               : 1.);
                 }
-            std::sort(mpairs.begin(),
-                      mpairs.end(),
-                      [](const MirrorPair &a, const MirrorPair &b) {
-                        return a.i < b.i || (a.i == b.i && a.j < b.j);
-                      });
-            mxi.assign(3 * mpairs.size(), 0.);
-            std::size_t q = 0;
-            for (std::size_t p = 0; p < mpairs.size(); ++p)
+          }
+        // In x = 0 (half, quarter; only the rank holding the plane, whose
+        // bin 0 starts at x = 0): spheres off that plane in bins 0 and 1,
+        // every pair; with quarter symmetry also the images in both planes
+        // of spheres off both planes and within the cut-off of z = 0.
+        if (x_sym && lo == 0)
+          {
+            near_x.clear();
+            const std::uint32_t k_end = bin_start[std::min(2u, n_bins)];
+            for (std::uint32_t k = 0; k < k_end; ++k)
+              if (bin_sphere[k] >= nf)
+                near_x.push_back(bin_sphere[k]);
+            for (std::size_t a = 0; a < near_x.size(); ++a)
+              for (std::size_t c = a; c < near_x.size(); ++c)
+                {
+                  const std::size_t i = near_x[a], j = near_x[c];
+                  const bool zi = z_sym && zmask[i % nf] == 0.,
+                             zj = z_sym && zmask[j % nf] == 0.;
+                  add_mirror(i, j, 1, zi && zj ? 0.5 : 1.);
+                  if (z_sym && !zi && !zj && pos[3 * i + 2] < cutoff &&
+                      pos[3 * j + 2] < cutoff)
+                    add_mirror(i, j, 3, 1.);
+                }
+          }
+        std::sort(mpairs.begin(), mpairs.end(), mirror_less);
+        mxi.assign(3 * mpairs.size(), 0.);
+        std::size_t q = 0;
+        for (std::size_t p = 0; p < mpairs.size(); ++p)
+          {
+            while (q < mpairs_old.size() && mirror_less(mpairs_old[q], mpairs[p]))
+              ++q;
+            if (q < mpairs_old.size() && mpairs_old[q].i == mpairs[p].i &&
+                mpairs_old[q].j == mpairs[p].j &&
+                mpairs_old[q].axes == mpairs[p].axes && mpairs_old[q].active)
               {
-                while (q < mpairs_old.size() &&
-                       (mpairs_old[q].i < mpairs[p].i ||
-                        (mpairs_old[q].i == mpairs[p].i &&
-                         mpairs_old[q].j < mpairs[p].j)))
-                  ++q;
-                if (q < mpairs_old.size() && mpairs_old[q].i == mpairs[p].i &&
-                    mpairs_old[q].j == mpairs[p].j && mpairs_old[q].active)
-                  {
-                    mpairs[p].active = true;
-                    for (unsigned int c = 0; c < 3; ++c)
-                      mxi[3 * p + c] = mxi_old[3 * q + c];
-                  }
+                mpairs[p].active = true;
+                for (unsigned int c = 0; c < 3; ++c)
+                  mxi[3 * p + c] = mxi_old[3 * q + c];
               }
           }
       }
@@ -1097,14 +1140,17 @@ namespace YarnImpact
             F[3 * i + 2] += fz_;
           }
 
-        // Mirror pairs (quarter symmetry).
+        // Mirror pairs: i with the image of j; j feels the mirror image of
+        // the reaction (nothing more for a self-image pair).
         for (std::size_t p = 0; p < mpairs.size(); ++p)
           {
             MirrorPair &mp      = mpairs[p];
             const std::size_t i = mp.i, j = mp.j;
-            const double ex = x[3 * i] - x[3 * j],
+            const double sx = (mp.axes & 1) ? -1. : 1.,
+                         sz = (mp.axes & 2) ? -1. : 1.;
+            const double ex = x[3 * i] - sx * x[3 * j],
                          ey = x[3 * i + 1] - x[3 * j + 1],
-                         ez = x[3 * i + 2] + x[3 * j + 2];
+                         ez = x[3 * i + 2] - sz * x[3 * j + 2];
             const double r2 = ex * ex + ey * ey + ez * ez;
             if (r2 >= d2)
               {
@@ -1118,9 +1164,9 @@ namespace YarnImpact
             mp.active          = true;
             const double dist  = std::sqrt(r2);
             const double n[3]  = {ex / dist, ey / dist, ez / dist};
-            const double vr[3] = {v[3 * i] - v[3 * j],
+            const double vr[3] = {v[3 * i] - sx * v[3 * j],
                                   v[3 * i + 1] - v[3 * j + 1],
-                                  v[3 * i + 2] + v[3 * j + 2]};
+                                  v[3 * i + 2] - sz * v[3 * j + 2]};
             double f[3], diss = 0.;
             fibre_law.force(d - dist, n, vr, dt, &mxi[3 * p], f, diss);
             const double w = mp.w;
@@ -1129,9 +1175,9 @@ namespace YarnImpact
             F[3 * i + 2] += w * f[2];
             if (j != i)
               {
-                F[3 * j] -= w * f[0];
+                F[3 * j] -= w * sx * f[0];
                 F[3 * j + 1] -= w * f[1];
-                F[3 * j + 2] += w * f[2];
+                F[3 * j + 2] -= w * sz * f[2];
               }
             dissipated += w * (i == j ? 0.5 : 1.) * own_factor(i, j) * diss;
           }
@@ -1286,9 +1332,12 @@ namespace YarnImpact
           if (mpairs[p].active)
             {
               const std::size_t i = mpairs[p].i, j = mpairs[p].j;
-              const double r2 = std::pow(pos[3 * i] - pos[3 * j], 2) +
-                                std::pow(pos[3 * i + 1] - pos[3 * j + 1], 2) +
-                                std::pow(pos[3 * i + 2] + pos[3 * j + 2], 2);
+              const double sx = (mpairs[p].axes & 1) ? -1. : 1.,
+                           sz = (mpairs[p].axes & 2) ? -1. : 1.;
+              const double r2 =
+                std::pow(pos[3 * i] - sx * pos[3 * j], 2) +
+                std::pow(pos[3 * i + 1] - pos[3 * j + 1], 2) +
+                std::pow(pos[3 * i + 2] - sz * pos[3 * j + 2], 2);
               const double delta = std::max(0., d - std::sqrt(r2));
               contact += mpairs[p].w * (i == j ? 0.5 : 1.) * own_factor(i, j) *
                          fibre_law.energy(delta, &mxi[3 * p]);

@@ -89,7 +89,9 @@ namespace
   }
 
   std::vector<HistoryRow>
-  run(const Parameters::Symmetry symmetry, const std::string &directory)
+  run(const Parameters::Symmetry symmetry,
+      const std::string &directory,
+      const bool breaking = false)
   {
     Parameters::Shared p;
     p.general.model            = Parameters::ModelType::dem;
@@ -105,6 +107,19 @@ namespace
     p.output.snapshot_interval = 0.;
     p.output.history_interval  = 0.05e-6;
     p.output.verbosity         = Parameters::Verbosity::test;
+    if (breaking)
+      {
+        // A fast, point-like nose and a low failure strain: the fibres
+        // break at the impact point and their loose ends recoil along
+        // x = 0, where they meet the mirror images of the other fibres'
+        // ends.
+        p.projectile.initial_velocity = 500.;
+        p.projectile.motion = Parameters::ProjectileMotion::prescribed_velocity;
+        p.projectile.diameter     = 0.05e-3;
+        p.yarn.failure_strain     = 0.01;
+        p.time.end_time           = 1e-6;
+        p.output.history_interval = 0.1e-6;
+      }
     std::filesystem::create_directories(directory);
     DEM::Parameters dem;
     dem.layout     = DEM::FibreLayout::file;
@@ -117,6 +132,12 @@ namespace
     simulation.run();
     return simulation.history();
   }
+
+  void
+  compare(const std::vector<HistoryRow> &full,
+          const std::vector<HistoryRow> &half,
+          const std::vector<HistoryRow> &quarter,
+          const std::string &label);
 
   void
   check_symmetry()
@@ -132,9 +153,24 @@ namespace
         for (const double z : {-1.5, -0.5, 0.5, 1.5})
           f << y << ' ' << z * d << '\n';
     }
-    const auto full    = run(Parameters::Symmetry::none, "run_none");
-    const auto half    = run(Parameters::Symmetry::half, "run_half");
-    const auto quarter = run(Parameters::Symmetry::quarter, "run_quarter");
+    compare(run(Parameters::Symmetry::none, "run_none"),
+            run(Parameters::Symmetry::half, "run_half"),
+            run(Parameters::Symmetry::quarter, "run_quarter"),
+            "");
+    // With broken fibres: the loose ends near x = 0 touch the mirror images
+    // of other spheres (mirror pairs in x = 0, and in x = 0 and z = 0).
+    compare(run(Parameters::Symmetry::none, "run_none_break", true),
+            run(Parameters::Symmetry::half, "run_half_break", true),
+            run(Parameters::Symmetry::quarter, "run_quarter_break", true),
+            " (fibres broken at the impact point)");
+  }
+
+  void
+  compare(const std::vector<HistoryRow> &full,
+          const std::vector<HistoryRow> &half,
+          const std::vector<HistoryRow> &quarter,
+          const std::string &label)
+  {
     const double E0    = full[0].projectile_kinetic_energy;
     for (const auto *other : {&half, &quarter})
       {
@@ -155,10 +191,16 @@ namespace
                                    (*other)[r].contact_force));
           }
         std::cout << (other == &half ? "half" : "quarter")
-                  << " symmetry against the full model: " << full.size()
+                  << " symmetry against the full model" << label << ": " << full.size()
                   << " and " << other->size() << " history rows, velocity "
-                  << verdict(dv < 1e-6) << ", energies " << verdict(dE < 1e-6)
+<< verdict(dv < 1e-6) << ", energies " << verdict(dE < 1e-6)
                   << ", contact force " << verdict(df < 1e-6) << '\n';
+      }
+    if (!label.empty())
+      {
+        std::cout << "broken trusses at the end: "
+                  << verdict(full.back().model.n_failed > 0) << '\n';
+        return;
       }
     std::cout << std::fixed << std::setprecision(4)
               << "full model: final velocity "
