@@ -60,10 +60,11 @@ namespace YarnImpact
       /** What the force loop keeps of one cell besides its forces. */
       struct CellResult
       {
-        double energy         = 0.;  // strain energy [J]
-        double max_elongation = -1.; // largest ln(lambda_f)
-        double sum_elongation = 0.;  // sum over Gauss points of ln(lambda_f)
-        double max_compaction = 0.;  // largest |I_tc|
+        double energy         = 0.;    // strain energy [J]
+        double max_elongation = -1.;   // largest ln(lambda_f)
+        double sum_elongation = 0.;    // sum over Gauss points of ln(lambda_f)
+        double max_compaction = 0.;    // largest |I_tc|
+        double min_J          = 1e300; // smallest det F
       };
 
       /**
@@ -114,6 +115,10 @@ namespace YarnImpact
             r.sum_elongation += inv.elongation;
             r.max_compaction =
               std::max(r.max_compaction, std::abs(inv.compaction));
+            r.min_J = std::min(r.min_J,
+                               F[0] * (F[4] * F[8] - F[5] * F[7]) -
+                                 F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                                 F[2] * (F[3] * F[7] - F[4] * F[6]));
             r.energy += W * JxW[q];
             for (double &p : P)
               p *= JxW[q];
@@ -159,6 +164,9 @@ namespace YarnImpact
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)
                   F[3 * i + j] += u[3 * a + i] * g[a][j];
+            const Double4 J = F[0] * (F[4] * F[8] - F[5] * F[7]) -
+                              F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                              F[2] * (F[3] * F[7] - F[4] * F[6]);
             Double4 P[9], Ie, Itc, Itd;
             const Double4 W = law.stress_kernel(F, P, Ie, Itc, Itd);
             Double4 jxw;
@@ -172,6 +180,7 @@ namespace YarnImpact
                 r.max_elongation = std::max(r.max_elongation, Ie[l]);
                 r.sum_elongation += Ie[l];
                 r.max_compaction = std::max(r.max_compaction, std::abs(Itc[l]));
+                r.min_J          = std::min(r.min_J, J[l]);
               }
             for (unsigned int a = 0; a < n_nodes; ++a)
               for (unsigned int i = 0; i < 3; ++i)
@@ -697,11 +706,13 @@ namespace YarnImpact
               dissipated += cell_energy;
               continue;
             }
-          if (failure && !std::isfinite(cell_energy))
+          if (failure && (!std::isfinite(cell_energy) || r.min_J < 0.2))
             {
-              // An inverted cell (J <= 0) among the broken ends of a cut
-              // yarn: it is eroded, as explicit impact codes do. Without
-              // failure the NaN stops the run instead.
+              // A cell crushed to less than a fifth of its volume, or
+              // inverted, among the broken ends of a cut yarn: it is eroded,
+              // as explicit impact codes do (such a cell would set a
+              // vanishing time step). Without failure the run stops instead
+              // on the NaN or on the energy error.
               cell_failed[c] = 1;
               continue;
             }
