@@ -354,8 +354,12 @@ namespace YarnImpact
       std::vector<unsigned char> cell_axis; // local axis along x
       std::vector<unsigned int> cell_layer; // axial cell layer
       std::vector<unsigned char> cell_failed;
-      std::vector<double> cell_strain;      // max fibre strain
-      std::vector<double> cell_mean_strain; // mean fibre strain
+      // Largest and mean ln(lambda_f) of each cell: the strains are
+      // expm1() of them, taken only where they are reported.
+      std::vector<double> cell_log_stretch;
+      std::vector<double> cell_mean_log_stretch;
+      /** ln(1 + failure strain): the failure test without expm1 per cell. */
+      double failure_log_stretch = 0.;
       std::vector<double> cell_volume;
       std::vector<double> cell_compaction; // max |I_tc|
 
@@ -532,8 +536,9 @@ namespace YarnImpact
       area.compress(VectorOperation::add);
       const unsigned int n_owned_cells = cell_index.size();
       cell_failed.assign(n_owned_cells, 0);
-      cell_strain.assign(n_owned_cells, 0.);
-      cell_mean_strain.assign(n_owned_cells, 0.);
+      cell_log_stretch.assign(n_owned_cells, 0.);
+      cell_mean_log_stretch.assign(n_owned_cells, 0.);
+      failure_log_stretch = std::log1p(shared.yarn.failure_strain);
       cell_compaction.assign(n_owned_cells, 0.);
 
       // Owned nodes, their constraints and stations. The x dof of a vertex
@@ -680,7 +685,6 @@ namespace YarnImpact
       displacement.update_ghost_values();
       force                       = 0.;
       const bool failure          = shared.yarn.failure;
-      const double failure_strain = shared.yarn.failure_strain;
       double energy               = 0.;
 
       for (unsigned int c = 0; c < cell_index.size(); ++c)
@@ -695,10 +699,10 @@ namespace YarnImpact
             u[k] = displacement.local_element(dofs[k]);
           const CellResult r       = integrate(law, u, grad, JxW, f);
           const double cell_energy = r.energy;
-          cell_strain[c]           = std::expm1(r.max_elongation);
-          cell_mean_strain[c]      = std::expm1(r.sum_elongation / n_q);
+          cell_log_stretch[c]      = r.max_elongation;
+          cell_mean_log_stretch[c] = r.sum_elongation / n_q;
           cell_compaction[c]       = r.max_compaction;
-          if (failure && cell_strain[c] > failure_strain)
+          if (failure && r.max_elongation > failure_log_stretch)
             {
               // The cell breaks: it carries no force from now on, and its
               // elastic energy is released (counted as dissipated).
@@ -842,7 +846,7 @@ namespace YarnImpact
         if (cell_failed[c])
           ++n_failed;
         else
-          max_strain = std::max(max_strain, cell_strain[c]);
+          max_strain = std::max(max_strain, std::expm1(cell_log_stretch[c]));
       o.max_strain = Utilities::MPI::max(max_strain, communicator);
       o.n_failed   = static_cast<unsigned long>(symmetry) *
                    Utilities::MPI::sum(n_failed, communicator);
@@ -865,7 +869,8 @@ namespace YarnImpact
               const unsigned int s = static_cast<unsigned int>(std::round(
                 std::abs(reference_coordinate[dofs[3 * a]]) / station_spacing));
               // Each cell has four vertices on each of its two layers.
-              sums[2 * n + s] += 0.25 * cell_volume[c] * cell_mean_strain[c];
+              sums[2 * n + s] += 0.25 * cell_volume[c] *
+                                 std::expm1(cell_mean_log_stretch[c]);
               sums[3 * n + s] += 0.25 * cell_volume[c];
             }
         }
@@ -1015,7 +1020,7 @@ namespace YarnImpact
           if (cell_failed[c])
             for (unsigned int k = 4; k < 10; ++k)
               sums[k] = 0.;
-          sums[3] = cell_strain[c];
+          sums[3] = std::expm1(cell_log_stretch[c]);
           for (unsigned int k = 0; k < 10; ++k)
             fields[k][id] = sums[k];
           fields[10][id] = cell_failed[c];
