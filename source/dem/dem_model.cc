@@ -1017,7 +1017,8 @@ namespace YarnImpact
         std::size_t q = 0;
         for (std::size_t p = 0; p < mpairs.size(); ++p)
           {
-            while (q < mpairs_old.size() && mirror_less(mpairs_old[q], mpairs[p]))
+            while (q < mpairs_old.size() &&
+                   mirror_less(mpairs_old[q], mpairs[p]))
               ++q;
             if (q < mpairs_old.size() && mpairs_old[q].i == mpairs[p].i &&
                 mpairs_old[q].j == mpairs[p].j &&

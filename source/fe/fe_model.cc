@@ -683,9 +683,9 @@ namespace YarnImpact
                                    const double dt)
     {
       displacement.update_ghost_values();
-      force                       = 0.;
-      const bool failure          = shared.yarn.failure;
-      double energy               = 0.;
+      force              = 0.;
+      const bool failure = shared.yarn.failure;
+      double energy      = 0.;
 
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         {
@@ -869,8 +869,8 @@ namespace YarnImpact
               const unsigned int s = static_cast<unsigned int>(std::round(
                 std::abs(reference_coordinate[dofs[3 * a]]) / station_spacing));
               // Each cell has four vertices on each of its two layers.
-              sums[2 * n + s] += 0.25 * cell_volume[c] *
-                                 std::expm1(cell_mean_log_stretch[c]);
+              sums[2 * n + s] +=
+                0.25 * cell_volume[c] * std::expm1(cell_mean_log_stretch[c]);
               sums[3 * n + s] += 0.25 * cell_volume[c];
             }
         }

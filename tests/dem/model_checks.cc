@@ -171,7 +171,7 @@ namespace
           const std::vector<HistoryRow> &quarter,
           const std::string &label)
   {
-    const double E0    = full[0].projectile_kinetic_energy;
+    const double E0 = full[0].projectile_kinetic_energy;
     for (const auto *other : {&half, &quarter})
       {
         double dv = 0., dE = 0., df = 0.;
@@ -191,10 +191,11 @@ namespace
                                    (*other)[r].contact_force));
           }
         std::cout << (other == &half ? "half" : "quarter")
-                  << " symmetry against the full model" << label << ": " << full.size()
-                  << " and " << other->size() << " history rows, velocity "
-<< verdict(dv < 1e-6) << ", energies " << verdict(dE < 1e-6)
-                  << ", contact force " << verdict(df < 1e-6) << '\n';
+                  << " symmetry against the full model" << label << ": "
+                  << full.size() << " and " << other->size()
+                  << " history rows, velocity " << verdict(dv < 1e-6)
+                  << ", energies " << verdict(dE < 1e-6) << ", contact force "
+                  << verdict(df < 1e-6) << '\n';
       }
     if (!label.empty())
       {
