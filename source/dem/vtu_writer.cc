@@ -101,22 +101,19 @@ namespace YarnImpact
                "header_type=\"UInt32\">\n<UnstructuredGrid>\n<Piece "
                "NumberOfPoints=\""
             << n_points << "\" NumberOfCells=\"" << n_cells << "\">\n";
+        const auto write_all = [&out](const auto &arrays) {
+          for (const auto &a : arrays)
+            write_array(out,
+                        a.name,
+                        a.type,
+                        a.components,
+                        a.bytes.data(),
+                        a.bytes.size());
+        };
         out << "<PointData>\n";
-        for (const auto &a : point_data)
-          write_array(out,
-                      a.name,
-                      a.type,
-                      a.components,
-                      a.bytes.data(),
-                      a.bytes.size());
+        write_all(point_data);
         out << "</PointData>\n<CellData>\n";
-        for (const auto &a : cell_data)
-          write_array(out,
-                      a.name,
-                      a.type,
-                      a.components,
-                      a.bytes.data(),
-                      a.bytes.size());
+        write_all(cell_data);
         out << "</CellData>\n<Points>\n";
         write_array(out,
                     "",

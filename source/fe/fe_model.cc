@@ -115,10 +115,7 @@ namespace YarnImpact
             r.sum_elongation += inv.elongation;
             r.max_compaction =
               std::max(r.max_compaction, std::abs(inv.compaction));
-            r.min_J = std::min(r.min_J,
-                               F[0] * (F[4] * F[8] - F[5] * F[7]) -
-                                 F[1] * (F[3] * F[8] - F[5] * F[6]) +
-                                 F[2] * (F[3] * F[7] - F[4] * F[6]));
+            r.min_J = std::min(r.min_J, internal::determinant(F));
             r.energy += W * JxW[q];
             for (double &p : P)
               p *= JxW[q];
@@ -164,9 +161,7 @@ namespace YarnImpact
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)
                   F[3 * i + j] += u[3 * a + i] * g[a][j];
-            const Double4 J = F[0] * (F[4] * F[8] - F[5] * F[7]) -
-                              F[1] * (F[3] * F[8] - F[5] * F[6]) +
-                              F[2] * (F[3] * F[7] - F[4] * F[6]);
+            const Double4 J = internal::determinant(F);
             Double4 P[9], Ie, Itc, Itd;
             const Double4 W = law.stress_kernel(F, P, Ie, Itc, Itd);
             Double4 jxw;
@@ -203,52 +198,25 @@ namespace YarnImpact
 #endif
 
       YARN_IMPACT_CLONES CellResult
-      integrate_cell_charmetant(const CharmetantLaw &law,
-                                const double *u,
-                                const double *grad,
-                                const double *JxW,
-                                double *f)
-      {
-        return integrate_cell(law, u, grad, JxW, f);
-      }
-
-      YARN_IMPACT_CLONES CellResult
-      integrate_cell_linear(const LinearTransverselyIsotropicLaw &law,
-                            const double *u,
-                            const double *grad,
-                            const double *JxW,
-                            double *f)
-      {
-        return integrate_cell(law, u, grad, JxW, f);
-      }
-
-      inline CellResult
       integrate(const CharmetantLaw &law,
                 const double *u,
                 const double *grad,
                 const double *JxW,
                 double *f)
       {
-        return integrate_cell_charmetant(law, u, grad, JxW, f);
+        return integrate_cell(law, u, grad, JxW, f);
       }
 
-      inline CellResult
+      YARN_IMPACT_CLONES CellResult
       integrate(const LinearTransverselyIsotropicLaw &law,
                 const double *u,
                 const double *grad,
                 const double *JxW,
                 double *f)
       {
-        return integrate_cell_linear(law, u, grad, JxW, f);
+        return integrate_cell(law, u, grad, JxW, f);
       }
 
-      inline double
-      determinant(const Matrix3 &F)
-      {
-        return F[0] * (F[4] * F[8] - F[5] * F[7]) -
-               F[1] * (F[3] * F[8] - F[5] * F[6]) +
-               F[2] * (F[3] * F[7] - F[4] * F[6]);
-      }
     } // namespace
 
 
@@ -996,7 +964,7 @@ namespace YarnImpact
               law.stress(F, P, inv);
               inv = charmetant_invariants(F);
               // Cauchy stress sigma = P F^T / J.
-              const double J = determinant(F);
+              const double J = internal::determinant(F);
               double sigma[9];
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)

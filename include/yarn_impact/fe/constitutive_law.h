@@ -272,6 +272,16 @@ namespace YarnImpact
         return r;
       }
 
+      /** det F of a row-major 3x3 matrix. */
+      template <typename V>
+      inline V
+      determinant(const V (&F)[9])
+      {
+        return F[0] * (F[4] * F[8] - F[5] * F[7]) -
+               F[1] * (F[3] * F[8] - F[5] * F[6]) +
+               F[2] * (F[3] * F[7] - F[4] * F[6]);
+      }
+
       /** C = F^T F (row-major, symmetric); returns J = det F. */
       template <typename V>
       inline V
@@ -285,9 +295,7 @@ namespace YarnImpact
               C[3 * i + j] = c;
               C[3 * j + i] = c;
             }
-        return F[0] * (F[4] * F[8] - F[5] * F[7]) -
-               F[1] * (F[3] * F[8] - F[5] * F[6]) +
-               F[2] * (F[3] * F[7] - F[4] * F[6]);
+        return determinant(F);
       }
 
       /** P = F S for a symmetric S. */
