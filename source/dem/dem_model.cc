@@ -179,8 +179,15 @@ namespace YarnImpact
         bool failure;
 
         // --- decomposition ---------------------------------------------------
-        unsigned int st_begin = 0, st_end = 0, lo = 0, hi = 0;
-        std::size_t n_local = 0, own_b = 0, own_e = 0;
+        // Storage holds the stations [lo, hi): the own slab and the whole
+        // slabs of both neighbours, so that the ghost layers can grow
+        // without moving data. The active stations [g_lo, g_hi) (spheres
+        // [act_b, act_e)) are the own slab and the current ghost layers;
+        // ghost_lo/ghost_hi hold them for every rank (identical on all).
+        unsigned int st_begin = 0, st_end = 0, lo = 0, hi = 0, g_lo = 0,
+                     g_hi = 0;
+        std::size_t n_local = 0, own_b = 0, own_e = 0, act_b = 0, act_e = 0;
+        std::vector<unsigned int> ghost_lo, ghost_hi;
 
         // --- state (local spheres, cross-section-major)
         // ------------------------
@@ -262,7 +269,15 @@ namespace YarnImpact
         accumulate_criterion(const std::size_t i);
         bool
         lists_valid();
+        unsigned int
+        slab_begin(const unsigned int q) const
+        {
+          return static_cast<unsigned int>(static_cast<unsigned long>(n_st) *
+                                           q / n_ranks);
+        }
         void
+        set_active_range();
+        bool
         check_locality();
         void
         rebuild();
@@ -414,11 +429,29 @@ namespace YarnImpact
                   std::to_string(n_ranks) +
                   " MPI ranks (each rank needs more cross-sections than "
                   "ghost layers): use fewer ranks or fewer ghost stations");
-        lo      = (rank == 0 ? 0 : st_begin - G);
-        hi      = (rank + 1 == n_ranks ? n_st : st_end + G);
+        lo      = (rank == 0 ? 0 : slab_begin(rank - 1));
+        hi      = (rank + 1 == n_ranks ? n_st : slab_begin(rank + 2));
         n_local = static_cast<std::size_t>(hi - lo) * nf;
         own_b   = local_index(st_begin, 0);
         own_e   = local_index(st_end, 0);
+        ghost_lo.resize(n_ranks);
+        ghost_hi.resize(n_ranks);
+        for (unsigned int q = 0; q < n_ranks; ++q)
+          {
+            ghost_lo[q] = (q == 0 ? 0 : slab_begin(q) - G);
+            ghost_hi[q] = (q + 1 == n_ranks ? n_st : slab_begin(q + 1) + G);
+          }
+        set_active_range();
+      }
+
+
+      void
+      Model::set_active_range()
+      {
+        g_lo  = ghost_lo[rank];
+        g_hi  = ghost_hi[rank];
+        act_b = local_index(g_lo, 0);
+        act_e = local_index(g_hi, 0);
       }
 
 
@@ -477,7 +510,8 @@ namespace YarnImpact
         dealii::Utilities::MPI::max(initial_width, comm, initial_width);
 
         rebuild();
-        check_locality();
+        if (check_locality())
+          rebuild(); // storage holds the initial positions of every station
         forces_consumed = true;
 
         const double E0 = 0.5 * projectile.mass() * projectile.velocity() *
@@ -580,18 +614,20 @@ namespace YarnImpact
         MPI_Request requests[4];
         unsigned int n = 0;
         const int tag  = 71;
+        // Each message is one contiguous block of cross-sections: the
+        // receiver's ghost layer is the sender's stations next to the
+        // boundary.
         if (rank > 0)
           {
-            const std::size_t count = 3ul * (st_begin - lo) * nf;
-            MPI_Irecv(v.data(),
-                      count,
+            MPI_Irecv(v.data() + 3 * act_b,
+                      3ul * (st_begin - g_lo) * nf,
                       MPI_DOUBLE,
                       rank - 1,
                       tag,
                       comm,
                       &requests[n++]);
             MPI_Isend(v.data() + 3 * own_b,
-                      count,
+                      3ul * (ghost_hi[rank - 1] - st_begin) * nf,
                       MPI_DOUBLE,
                       rank - 1,
                       tag,
@@ -600,16 +636,15 @@ namespace YarnImpact
           }
         if (rank + 1 < n_ranks)
           {
-            const std::size_t count = 3ul * (hi - st_end) * nf;
             MPI_Irecv(v.data() + 3 * own_e,
-                      count,
+                      3ul * (g_hi - st_end) * nf,
                       MPI_DOUBLE,
                       rank + 1,
                       tag,
                       comm,
                       &requests[n++]);
-            MPI_Isend(v.data() + 3 * (own_e - count / 3),
-                      count,
+            MPI_Isend(v.data() + 3 * local_index(ghost_lo[rank + 1], 0),
+                      3ul * (st_end - ghost_lo[rank + 1]) * nf,
                       MPI_DOUBLE,
                       rank + 1,
                       tag,
@@ -620,11 +655,12 @@ namespace YarnImpact
       }
 
 
-      void
+      bool
       Model::check_locality()
       {
         // Global x-extent of every cross-section. Everything below is
-        // evaluated identically on all ranks, so a failure is collective.
+        // evaluated identically on all ranks, so a failure or a growth of
+        // the ghost layers is collective. Returns whether the layers grew.
         const std::vector<double> *lo_x = &st_xlo, *hi_x = &st_xhi;
         std::vector<double> glo, ghi;
         if (n_ranks > 1)
@@ -664,35 +700,57 @@ namespace YarnImpact
                              "image); run the case with Symmetry = none");
           }
         if (n_ranks == 1)
-          return;
-        const unsigned int G = prm.ghost_stations;
+          return false;
+        // Ghost layers: every cross-section that comes within d + L0 of the
+        // x-range of a rank's slab must be in that rank's ghost layer. The
+        // layer grows (by two more cross-sections) while the stations are
+        // still L0 farther than a contact, so no pair with history is ever
+        // missing on one side, and L0 is more than any sphere moves
+        // relative to another in a step. It can only take stations from the
+        // neighbouring slab.
+        const double reach = d + L0;
+        bool grown         = false;
         for (unsigned int q = 0; q < n_ranks; ++q)
           {
-            const unsigned int b = static_cast<unsigned int>(
-              static_cast<unsigned long>(n_st) * q / n_ranks);
-            const unsigned int e = static_cast<unsigned int>(
-              static_cast<unsigned long>(n_st) * (q + 1) / n_ranks);
-            const unsigned int l = (q == 0 ? 0 : b - G);
-            const unsigned int h = (q + 1 == n_ranks ? n_st : e + G);
+            const unsigned int b = slab_begin(q), e = slab_begin(q + 1);
             double Xlo = infinity, Xhi = -infinity;
             for (unsigned int s = b; s < e; ++s)
               {
                 Xlo = std::min(Xlo, (*lo_x)[s]);
                 Xhi = std::max(Xhi, (*hi_x)[s]);
               }
+            const auto near = [&](const unsigned int t, const double r) {
+              return !((*lo_x)[t] > Xhi + r || (*hi_x)[t] < Xlo - r);
+            };
+            const unsigned int l_min = (q == 0 ? 0 : slab_begin(q - 1));
+            const unsigned int h_max =
+              (q + 1 == n_ranks ? n_st : slab_begin(q + 2));
             for (unsigned int t = 0; t < n_st; ++t)
-              if ((t < l || t >= h) &&
-                  !((*lo_x)[t] > Xhi + d || (*hi_x)[t] < Xlo - d))
-                {
-                  std::ostringstream s;
-                  s << "[dem] fibres slid along each other by more than "
-                       "DEM/Ghost stations = "
-                    << G << " cross-sections across an MPI rank boundary "
-                    << "(cross-section " << t
-                    << "); increase DEM/Ghost stations or use fewer ranks";
-                  throw RunError(s.str());
-                }
+              {
+                if (t >= ghost_lo[q] && t < ghost_hi[q])
+                  continue;
+                if (near(t, d) || ((t < l_min || t >= h_max) && near(t, reach)))
+                  {
+                    std::ostringstream s;
+                    s << "[dem] fibres slid along each other across the "
+                         "slabs of more than two MPI ranks (cross-section "
+                      << t << " reached the slab of rank " << q
+                      << "); use fewer ranks";
+                    throw RunError(s.str());
+                  }
+                if (near(t, reach))
+                  {
+                    grown = true;
+                    if (t < ghost_lo[q])
+                      ghost_lo[q] = (t >= l_min + 2 ? t - 2 : l_min);
+                    else
+                      ghost_hi[q] = std::min(h_max, t + 3);
+                  }
+              }
           }
+        if (grown)
+          set_active_range();
+        return grown;
       }
 
 
@@ -747,7 +805,7 @@ namespace YarnImpact
         const double cut2 = cutoff * cutoff;
         // Bins along x over the local spheres (owned and ghosts).
         double xmin = infinity, xmax = -infinity;
-        for (std::size_t i = 0; i < n_local; ++i)
+        for (std::size_t i = act_b; i < act_e; ++i)
           {
             xmin = std::min(xmin, pos[3 * i]);
             xmax = std::max(xmax, pos[3 * i]);
@@ -759,7 +817,7 @@ namespace YarnImpact
         D_prev.assign(3 * n_bins, 0.);
         D_sum.assign(3 * n_bins, 0.);
         r2_max = 0.;
-        for (std::size_t i = 0; i < n_local; ++i)
+        for (std::size_t i = act_b; i < act_e; ++i)
           {
             const auto b =
               std::min<std::uint32_t>(static_cast<std::uint32_t>(
@@ -773,11 +831,11 @@ namespace YarnImpact
         bin_start.assign(n_bins + 1, 0);
         for (unsigned int b = 0; b < n_bins; ++b)
           bin_start[b + 1] = bin_start[b] + bin_count[b];
-        bin_sphere.resize(n_local);
+        bin_sphere.resize(act_e - act_b);
         {
           std::vector<std::uint32_t> &fill = cell_sphere; // scratch
           fill.assign(bin_start.begin(), bin_start.end() - 1);
-          for (std::size_t i = 0; i < n_local; ++i)
+          for (std::size_t i = act_b; i < act_e; ++i)
             bin_sphere[fill[bin_of[i]]++] = i;
         }
         // A 2D (y, z) cell grid in each bin, cells no smaller than the
@@ -817,7 +875,7 @@ namespace YarnImpact
         std::vector<std::uint32_t> &cell_of = near_sphere; // scratch
         cell_of.resize(n_local);
         cell_start.assign(n_cells + 1, 0);
-        for (std::size_t i = 0; i < n_local; ++i)
+        for (std::size_t i = act_b; i < act_e; ++i)
           {
             const std::uint32_t b = bin_of[i];
             const auto cy         = static_cast<std::uint32_t>(
@@ -836,13 +894,13 @@ namespace YarnImpact
         {
           std::vector<std::uint32_t> fill(cell_start.begin(),
                                           cell_start.end() - 1);
-          for (std::size_t i = 0; i < n_local; ++i)
+          for (std::size_t i = act_b; i < act_e; ++i)
             cell_sphere[fill[cell_of[i]]++] = i;
         }
 
         // Candidate pairs: same bin (j > i) and next bin.
         found.clear();
-        for (std::size_t i = 0; i < n_local; ++i)
+        for (std::size_t i = act_b; i < act_e; ++i)
           {
             const std::uint32_t b = bin_of[i];
             const double xi = pos[3 * i], yi = pos[3 * i + 1],
@@ -905,7 +963,7 @@ namespace YarnImpact
             pairs[fill[p.first]++] = {p.second, 1.f};
         }
         const bool have_old = pstart_old.size() == n_local + 1;
-        for (std::size_t i = 0; i < n_local; ++i)
+        for (std::size_t i = act_b; i < act_e; ++i)
           {
             Pair *row             = pairs.data() + pstart[i];
             const std::uint32_t n = pstart[i + 1] - pstart[i];
@@ -968,7 +1026,7 @@ namespace YarnImpact
         if (z_sym)
           {
             near_sphere.clear(); // cell_of no longer needed
-            for (std::uint32_t k = 0; k < n_local; ++k)
+            for (std::uint32_t k = 0; k < bin_sphere.size(); ++k)
               {
                 const std::size_t i = bin_sphere[k];
                 if (zmask[i % nf] != 0. && pos[3 * i + 2] < cutoff)
@@ -1040,19 +1098,25 @@ namespace YarnImpact
         exchange_ghosts(vel);
         // Criterion contributions of the ghosts (the owned ones were added
         // during the drift).
-        for (std::size_t i = 0; i < own_b; ++i)
+        for (std::size_t i = act_b; i < own_b; ++i)
           accumulate_criterion(i);
-        for (std::size_t i = own_e; i < n_local; ++i)
+        for (std::size_t i = own_e; i < act_e; ++i)
           accumulate_criterion(i);
-        check_locality();
-        if (!lists_valid())
+        if (check_locality())
+          {
+            // New ghost cross-sections: fetch them and list their pairs.
+            exchange_ghosts(pos);
+            exchange_ghosts(vel);
+            rebuild();
+          }
+        else if (!lists_valid())
           rebuild();
 
         double *__restrict x = pos.data();
         double *__restrict v = vel.data();
         double *__restrict F = frc.data();
-        std::fill(F, F + 3 * own_b, 0.);
-        std::fill(F + 3 * own_e, F + 3 * n_local, 0.);
+        std::fill(F + 3 * act_b, F + 3 * own_b, 0.);
+        std::fill(F + 3 * own_e, F + 3 * act_e, 0.);
         if (!forces_consumed)
           std::fill(F + 3 * own_b, F + 3 * own_e, 0.);
         forces_consumed = false;
@@ -1094,7 +1158,7 @@ namespace YarnImpact
 
         // Fibre-fibre contacts.
         const double d2 = d * d;
-        for (std::size_t i = 0; i < n_local; ++i)
+        for (std::size_t i = act_b; i < act_e; ++i)
           {
             const std::uint32_t p0 = pstart[i], p1 = pstart[i + 1];
             if (p0 == p1)
@@ -1317,7 +1381,7 @@ namespace YarnImpact
         // Truss (st_begin - 1, st_begin) belongs to the rank on the left.
 
         // Contacts.
-        for (std::size_t i = 0; i < n_local; ++i)
+        for (std::size_t i = act_b; i < act_e; ++i)
           for (std::uint32_t p = pstart[i]; p < pstart[i + 1]; ++p)
             if (pairs[p].w < 0.f)
               {
@@ -1398,7 +1462,7 @@ namespace YarnImpact
       {
         // Owned cross-sections plus the first ghost one on the right, so the
         // trusses across the rank boundary are drawn.
-        const unsigned int p_end = std::min(st_end + 1, hi);
+        const unsigned int p_end = std::min(st_end + 1, g_hi);
         std::vector<float> points;
         std::vector<std::int32_t> lines;
         std::vector<VTU::Array> pd(4), cd(3);

@@ -88,11 +88,14 @@ namespace YarnImpact
                         "Number of fibre-fibre contacts per sphere assumed by "
                         "the stable time step estimate [-].");
       prm.declare_entry("Ghost stations",
-                        "12",
+                        "4",
                         Patterns::Integer(),
                         "Cross-sections copied from each neighbouring MPI "
-                        "rank every step; it bounds how far fibres may slide "
-                        "along each other across a rank boundary [-].");
+                        "rank every step at the start. The layer grows by "
+                        "itself (up to the neighbour's whole slab) when "
+                        "fibres slide along each other across a rank "
+                        "boundary, e.g. when cut fibres recoil; this value "
+                        "only sets where it starts [-].");
       prm.leave_subsection();
     }
 

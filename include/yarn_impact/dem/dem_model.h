@@ -60,8 +60,10 @@ namespace YarnImpact
       double skin = 2e-6;
       /** Contacts per sphere assumed by the stable time step [-]. */
       unsigned int coordination = 6;
-      /** Cross-sections copied from each neighbouring rank [-]. */
-      unsigned int ghost_stations = 12;
+      /** Cross-sections copied from each neighbouring rank at the start;
+       * the layer grows by itself when fibres slide across a rank
+       * boundary [-]. */
+      unsigned int ghost_stations = 4;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
