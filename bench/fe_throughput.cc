@@ -3,7 +3,8 @@
  * Charmetant law, in cell-steps per second per core, on the paper's mesh
  * refined along the axis, and the wall time of the default case.
  *
- * Usage: bench_fe_throughput [n_steps] [prm file of the default case]
+ * Usage: bench_fe_throughput [n_steps] [prm file of the default case, or -
+ * to skip it]
  */
 #include <yarn_impact/application.h>
 #include <yarn_impact/core/impact_simulation.h>
@@ -84,10 +85,10 @@ main(int argc, char **argv)
       if (is_root)
         out << std::setw(10) << model->n_elements() << std::setw(12) << n_steps
             << std::setw(14) << std::setprecision(4) << wall << std::setw(24)
-            << std::setprecision(4) << rate / 1e6 << " M\n";
+            << std::setprecision(4) << rate / 1e6 << " M" << std::endl;
     }
 
-  if (argc > 2)
+  if (argc > 2 && std::string(argv[2]) != "-")
     {
       dealii::ParameterHandler prm;
       AllParameters::declare_parameters(prm);

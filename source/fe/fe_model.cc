@@ -188,32 +188,39 @@ namespace YarnImpact
       }
 #pragma GCC diagnostic pop
 
-      // Compiled twice, for CPUs with AVX2 and FMA and for any x86-64; the
-      // loader picks the clone that the machine runs.
+      // Compiled twice, for CPUs with AVX2 and FMA and for any x86-64, and
+      // dispatched on the CPU's features. (GCC's target_clones with
+      // "arch=haswell" dispatches on the CPU *model*, so on a virtual
+      // machine that reports a generic Xeon it silently ran the generic
+      // clone.)
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#  define YARN_IMPACT_CLONES \
-    __attribute__((target_clones("arch=haswell", "default"), flatten))
-#else
-#  define YARN_IMPACT_CLONES
-#endif
-
-      YARN_IMPACT_CLONES CellResult
-      integrate(const CharmetantLaw &law,
-                const double *u,
-                const double *grad,
-                const double *JxW,
-                double *f)
+      template <class Law>
+      __attribute__((target("avx2,fma"), flatten)) CellResult
+      integrate_avx2(const Law &law,
+                     const double *u,
+                     const double *grad,
+                     const double *JxW,
+                     double *f)
       {
         return integrate_cell(law, u, grad, JxW, f);
       }
 
-      YARN_IMPACT_CLONES CellResult
-      integrate(const LinearTransverselyIsotropicLaw &law,
+      const bool cpu_has_avx2_fma =
+        __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#endif
+
+      template <class Law>
+      __attribute__((flatten)) CellResult
+      integrate(const Law &law,
                 const double *u,
                 const double *grad,
                 const double *JxW,
                 double *f)
       {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+        if (cpu_has_avx2_fma)
+          return integrate_avx2(law, u, grad, JxW, f);
+#endif
         return integrate_cell(law, u, grad, JxW, f);
       }
 
