@@ -357,6 +357,7 @@ namespace YarnImpact
           }
       }
 
+    summary.model_remarks  = model->remarks();
     summary.n_steps        = step;
     summary.end_time       = t;
     summary.wall_time      = wall_timer.wall_time();
@@ -546,6 +547,8 @@ namespace YarnImpact
         }
     for (const auto &c : (s.regression_format ? s.brief_checks : s.checks))
       out << "  check " << c << '\n';
+    if (!s.model_remarks.empty())
+      out << "  " << s.model_remarks << '\n';
     out << std::defaultfloat;
   }
 } // namespace YarnImpact

@@ -136,6 +136,20 @@ namespace YarnImpact
           return static_cast<unsigned long>(nf_whole) * n_whole_stations;
         }
 
+        std::string
+        remarks() const override
+        {
+          if (n_ranks == 1)
+            return {};
+          std::ostringstream s;
+          s << "MPI ghost layers grew " << n_ghost_growths
+            << " times; cross-sections below/above each slab at the end:";
+          for (unsigned int q = 0; q < n_ranks; ++q)
+            s << " rank " << q << " " << slab_begin(q) - ghost_lo[q] << "/"
+              << ghost_hi[q] - slab_begin(q + 1);
+          return s.str();
+        }
+
         /** Counters for the benchmark and the set-up report. */
         std::string
         statistics() const
@@ -188,6 +202,7 @@ namespace YarnImpact
                      g_hi = 0;
         std::size_t n_local = 0, own_b = 0, own_e = 0, act_b = 0, act_e = 0;
         std::vector<unsigned int> ghost_lo, ghost_hi;
+        unsigned long n_ghost_growths = 0;
 
         // --- state (local spheres, cross-section-major)
         // ------------------------
@@ -749,7 +764,10 @@ namespace YarnImpact
               }
           }
         if (grown)
-          set_active_range();
+          {
+            ++n_ghost_growths;
+            set_active_range();
+          }
         return grown;
       }
 

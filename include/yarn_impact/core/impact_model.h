@@ -153,6 +153,15 @@ namespace YarnImpact
      * for throughput figures. */
     virtual unsigned long
     n_elements() const = 0;
+
+    /** Model-specific remarks for the run summary (e.g. how the DEM's MPI
+     * ghost layers grew); empty by default. Must be identical on all
+     * ranks. */
+    virtual std::string
+    remarks() const
+    {
+      return {};
+    }
   };
 } // namespace YarnImpact
 

@@ -53,6 +53,9 @@ namespace YarnImpact
     std::vector<std::string> checks;
     /** The same lines without the measured numbers. */
     std::vector<std::string> brief_checks;
+    /** The model's remarks (ImpactModel::remarks()), printed in every
+     * format. */
+    std::string model_remarks;
     /**
      * Print the regression format (Output/Verbosity = test): only what does
      * not depend on round-off. Contact makes late times of a run sensitive
