@@ -243,6 +243,8 @@ namespace YarnImpact
         std::vector<double> bin_y0, bin_z0, bin_ic;
         std::vector<std::uint32_t> bin_ny, bin_nz;
         std::vector<std::pair<std::uint32_t, std::uint32_t>> found;
+        std::vector<double> cell_x, cell_y, cell_z;
+        std::vector<std::uint8_t> bin_owned;
 
         // --- energy accounting (local)
         // ----------------------------------------
@@ -916,11 +918,32 @@ namespace YarnImpact
             cell_sphere[fill[cell_of[i]]++] = i;
         }
 
-        // Candidate pairs: same bin (j > i) and next bin.
+        // Candidate pairs: same bin (j > i) and next bin. The positions are
+        // copied in cell order, so that the three cells of a row of the
+        // 3 x 3 block are one contiguous run; the distance test comes first
+        // (only a few candidates pass it). A ghost sphere is skipped when
+        // neither its bin nor the next holds an owned sphere (large ghost
+        // layers after fibres were cut).
+        cell_x.resize(cell_sphere.size());
+        cell_y.resize(cell_sphere.size());
+        cell_z.resize(cell_sphere.size());
+        for (std::size_t k = 0; k < cell_sphere.size(); ++k)
+          {
+            const std::size_t j = cell_sphere[k];
+            cell_x[k]           = pos[3 * j];
+            cell_y[k]           = pos[3 * j + 1];
+            cell_z[k]           = pos[3 * j + 2];
+          }
+        bin_owned.assign(n_bins + 1, 0);
+        for (std::size_t i = own_b; i < own_e; ++i)
+          bin_owned[bin_of[i]] = 1;
         found.clear();
         for (std::size_t i = act_b; i < act_e; ++i)
           {
             const std::uint32_t b = bin_of[i];
+            const bool i_owned    = owned(i);
+            if (!i_owned && !bin_owned[b] && !bin_owned[b + 1])
+              continue;
             const double xi = pos[3 * i], yi = pos[3 * i + 1],
                          zi = pos[3 * i + 2];
             for (std::uint32_t bb = b; bb <= b + 1 && bb < n_bins; ++bb)
@@ -932,33 +955,30 @@ namespace YarnImpact
                 const long cz =
                   static_cast<long>(std::floor((zi - bin_z0[bb]) * bin_ic[bb]));
                 const long ny = bin_ny[bb], nz = bin_nz[bb];
+                const long c0 = std::max(0l, cz - 1),
+                           c1 = std::min(nz - 1, cz + 1);
+                if (c0 > c1)
+                  continue;
                 for (long a = std::max(0l, cy - 1);
                      a <= std::min(ny - 1, cy + 1);
                      ++a)
-                  for (long c = std::max(0l, cz - 1);
-                       c <= std::min(nz - 1, cz + 1);
-                       ++c)
-                    {
-                      const std::uint32_t cell = cell_off[bb] + a * nz + c;
-                      for (std::uint32_t k = cell_start[cell];
-                           k < cell_start[cell + 1];
-                           ++k)
-                        {
-                          const std::size_t j = cell_sphere[k];
-                          if (bb == b && j <= i)
-                            continue;
-                          if (!owned(i) && !owned(j))
-                            continue;
-                          if (j == i + nf || j + nf == i)
-                            continue; // chain neighbours
-                          const double ex = xi - pos[3 * j],
-                                       ey = yi - pos[3 * j + 1],
-                                       ez = zi - pos[3 * j + 2];
-                          if (ex * ex + ey * ey + ez * ez < cut2)
-                            found.emplace_back(std::min<std::size_t>(i, j),
-                                               std::max<std::size_t>(i, j));
-                        }
-                    }
+                  {
+                    const std::uint32_t row = cell_off[bb] + a * nz;
+                    const std::uint32_t k1  = cell_start[row + c1 + 1];
+                    for (std::uint32_t k = cell_start[row + c0]; k < k1; ++k)
+                      {
+                        const double ex = xi - cell_x[k], ey = yi - cell_y[k],
+                                     ez = zi - cell_z[k];
+                        if (ex * ex + ey * ey + ez * ez >= cut2)
+                          continue;
+                        const std::size_t j = cell_sphere[k];
+                        if ((bb == b && j <= i) || (!i_owned && !owned(j)) ||
+                            j == i + nf || j + nf == i) // chain neighbours
+                          continue;
+                        found.emplace_back(std::min<std::size_t>(i, j),
+                                           std::max<std::size_t>(i, j));
+                      }
+                  }
               }
           }
 

@@ -690,9 +690,12 @@ namespace YarnImpact
               // A cell crushed to less than a fifth of its volume, or
               // inverted, among the broken ends of a cut yarn: it is eroded,
               // as explicit impact codes do (such a cell would set a
-              // vanishing time step). Without failure the run stops instead
-              // on the NaN or on the energy error.
+              // vanishing time step); its elastic energy leaves with it
+              // (counted as dissipated). Without failure the run stops
+              // instead on the NaN or on the energy error.
               cell_failed[c] = 1;
+              if (std::isfinite(cell_energy))
+                dissipated += cell_energy;
               continue;
             }
           energy += cell_energy;
