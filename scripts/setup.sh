@@ -1,10 +1,11 @@
 #!/bin/bash
 # Install what is missing (Debian 12, as root), configure in Release and
-# build. Used by the README's two commands and by CI.
+# build. Used by the README's two commands and by CI. Arguments are further
+# Debian packages to install if missing (run_default.sh: ParaView).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages="cmake g++ make libdeal.ii-dev numdiff openmpi-bin python3-matplotlib"
+packages="cmake g++ make libdeal.ii-dev numdiff openmpi-bin python3-matplotlib $*"
 missing=""
 for p in $packages; do
   dpkg -s "$p" > /dev/null 2>&1 || missing="$missing $p"
