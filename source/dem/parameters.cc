@@ -76,12 +76,15 @@ namespace YarnImpact
                         "Coulomb friction coefficient between the projectile "
                         "and the fibres [-].");
       prm.declare_entry("Skin",
-                        "2e-6",
+                        "4e-6",
                         Patterns::Double(),
                         "Verlet skin: pairs closer than the fibre diameter "
                         "plus this distance are listed; the lists are rebuilt "
                         "only when the proven bound on relative motion "
-                        "reaches it [m].");
+                        "reaches it. Up to about 0.4 diameters it lists "
+                        "hardly more pairs (the next neighbours in a packing, "
+                        "one sphere along on the next fibre, are sqrt(2) "
+                        "diameters away) [m].");
       prm.declare_entry("Coordination number",
                         "6",
                         Patterns::Integer(),

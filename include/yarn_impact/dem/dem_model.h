@@ -57,7 +57,7 @@ namespace YarnImpact
       /** Projectile-fibre Coulomb friction coefficient [-]. */
       double projectile_friction = 0.2;
       /** Verlet skin of the neighbour lists [m]. */
-      double skin = 2e-6;
+      double skin = 4e-6;
       /** Contacts per sphere assumed by the stable time step [-]. */
       unsigned int coordination = 6;
       /** Cross-sections copied from each neighbouring rank at the start;
