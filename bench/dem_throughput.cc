@@ -95,6 +95,7 @@ main(int argc, char **argv)
   const double memory_max = dealii::Utilities::MPI::max(peak_memory_mb(), comm);
   const double memory_sum = dealii::Utilities::MPI::sum(peak_memory_mb(), comm);
   const auto obs          = model->observables();
+  const std::string statistics_end = DEM::statistics(*model); // collective
   const unsigned long n_whole = model->n_elements() / shared.yarn.n_fibres;
   const unsigned long modelled =
     shared.yarn.n_fibres * ((n_whole - 1) / 2 + 1); // half symmetry
@@ -109,7 +110,7 @@ main(int argc, char **argv)
               << "peak memory " << memory_max << " MB per rank (max), "
               << memory_sum << " MB all ranks\n"
               << "before the timed steps: " << statistics_warm << "\n"
-              << "after: " << DEM::statistics(*model) << "\n"
+              << "after: " << statistics_end << "\n"
               << "projectile velocity " << projectile.impact_speed()
               << " m/s, max strain " << obs.max_strain << "\n";
   return 0;

@@ -150,14 +150,21 @@ namespace YarnImpact
           return s.str();
         }
 
-        /** Counters for the benchmark and the set-up report. */
+        /** Counters for the benchmark (collective). */
         std::string
         statistics() const
         {
+          // Collective: every rank's rebuilds and pairs.
+          std::vector<unsigned long> counts(2 * n_ranks, 0);
+          const unsigned long mine[2] = {n_rebuilds, pairs.size()};
+          MPI_Allgather(
+            mine, 2, MPI_UNSIGNED_LONG, counts.data(), 2, MPI_UNSIGNED_LONG, comm);
           std::ostringstream s;
-          s << "rebuilds " << n_rebuilds << " in " << step_count
-            << " force evaluations (rank " << rank << "), listed pairs "
-            << pairs.size() << ", last bound terms r " << last_r << " g "
+          s << step_count << " force evaluations; rebuilds (listed pairs) per "
+            << "rank:";
+          for (unsigned int q = 0; q < n_ranks; ++q)
+            s << " " << counts[2 * q] << " (" << counts[2 * q + 1] << ")";
+          s << "; rank " << rank << " last bound terms r " << last_r << " g "
             << last_g << " m";
           return s.str();
         }

@@ -77,8 +77,9 @@ namespace YarnImpact
                  const Parameters &parameters,
                  const MPI_Comm communicator);
 
-    /** Neighbour-list statistics of a DEM model (rebuilds, pairs), for the
-     * benchmark; empty for another model. */
+    /** Neighbour-list statistics of a DEM model (rebuilds and listed pairs
+     * of every rank), for the benchmark; empty for another model. Collective
+     * for a DEM model. */
     std::string
     statistics(const ImpactModel &model);
   } // namespace DEM
