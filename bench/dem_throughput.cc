@@ -3,6 +3,7 @@
 //
 //   mpirun -np 2 build/bench_dem_throughput [length_m=0.004] [steps=400]
 //                                           [skin_m=default] [warm-up_us=0]
+//                                           [list_block=default]
 //
 // The timed steps start at the impact, or after the warm-up time (untimed),
 // e.g. 10 us into the impact, where the sections have flattened and spread
@@ -61,6 +62,8 @@ main(int argc, char **argv)
   if (argc > 3)
     dem.skin = std::stod(argv[3]);
   const double warm_up = (argc > 4 ? std::stod(argv[4]) * 1e-6 : 0.);
+  if (argc > 5)
+    dem.list_block = static_cast<unsigned int>(std::stoul(argv[5]));
 
   auto model = DEM::create_model(shared, dem, comm);
   Projectile projectile(shared.projectile, shared.yarn.thickness_semi_axis);
@@ -96,7 +99,7 @@ main(int argc, char **argv)
   const double memory_sum = dealii::Utilities::MPI::sum(peak_memory_mb(), comm);
   const auto obs          = model->observables();
   const std::string statistics_end = DEM::statistics(*model); // collective
-  const unsigned long n_whole = model->n_elements() / shared.yarn.n_fibres;
+  const unsigned long n_whole      = model->n_elements() / shared.yarn.n_fibres;
   const unsigned long modelled =
     shared.yarn.n_fibres * ((n_whole - 1) / 2 + 1); // half symmetry
   if (is_root)

@@ -60,6 +60,52 @@ namespace YarnImpact
       }
 
 
+      /** The neighbour list of a block of consecutive cross-sections of a
+       * rank (doc/dem.md section 4): the pairs whose lower sphere index is
+       * in the block's rows, found among the rows and a halo of the
+       * following cross-sections, and the rebuild criterion of these
+       * spheres. A block is rebuilt on its own when its criterion fails, so
+       * that a few fast spheres under the projectile do not rebuild the
+       * lists of the whole slab (on every rank, the others wait for it). */
+      struct ListBlock
+      {
+        /** Storage cross-sections of the block (fixed). */
+        unsigned int s_begin = 0, s_end = 0;
+        /** Active cross-sections of the rows, and the end of the halo
+         * (which grows when other cross-sections come near the rows). */
+        unsigned int row_begin = 0, row_end = 0, halo_end = 0;
+        /** Spheres of the rows [b, e) and of the halo [e, h) at the last
+         * build; rows of the previous list [old_b, old_e). */
+        std::size_t b = 0, e = 0, h = 0, old_b = 0, old_e = 0;
+        /** The cross-sections changed since the last build. */
+        bool stale = true;
+        /** The rows hold the plane x = 0 (mirror pairs in x). */
+        bool holds_plane = false;
+        /** Pairs in CSR by the row of the lower index, with the tangential
+         * history of each pair [m]; mirror pairs likewise. */
+        std::vector<std::uint32_t> pstart, pstart_old;
+        std::vector<Pair> pairs, pairs_old;
+        std::vector<double> pxi, pxi_old;
+        std::vector<MirrorPair> mpairs, mpairs_old;
+        std::vector<double> mxi, mxi_old;
+        /** Build positions [m] and build bins of the spheres [b, h). */
+        std::vector<float> pos_build;
+        std::vector<std::uint32_t> bin_of;
+        /** Bins along x of the build and their reference displacements. */
+        double bin_x0 = 0., bin_h = 1.;
+        unsigned int n_bins = 0;
+        std::vector<std::uint32_t> bin_count;
+        std::vector<double> D_prev, D_sum;
+        double r2_max = 0.;
+
+        bool
+        active() const
+        {
+          return row_end > row_begin;
+        }
+      };
+
+
       class Model : public ImpactModel
       {
       public:
@@ -156,9 +202,24 @@ namespace YarnImpact
         {
           // Collective: every rank's rebuilds and pairs.
           std::vector<unsigned long> counts(2 * n_ranks, 0);
-          const unsigned long mine[2] = {n_rebuilds, pairs.size()};
-          MPI_Allgather(
-            mine, 2, MPI_UNSIGNED_LONG, counts.data(), 2, MPI_UNSIGNED_LONG, comm);
+          unsigned long n_pairs = 0, n_rows = 0;
+          for (const ListBlock &B : blocks)
+            {
+              n_pairs += B.pairs.size();
+              n_rows += B.e - B.b;
+            }
+          // Rebuilds counted in whole-rank equivalents (rebuilt rows / rows).
+          const unsigned long mine[2] = {
+            static_cast<unsigned long>(rebuilt_rows / std::max(1ul, n_rows) +
+                                       0.5),
+            n_pairs};
+          MPI_Allgather(mine,
+                        2,
+                        MPI_UNSIGNED_LONG,
+                        counts.data(),
+                        2,
+                        MPI_UNSIGNED_LONG,
+                        comm);
           std::ostringstream s;
           s << step_count << " force evaluations; rebuilds (listed pairs) per "
             << "rank:";
@@ -206,7 +267,7 @@ namespace YarnImpact
         // [act_b, act_e)) are the own slab and the current ghost layers;
         // ghost_lo/ghost_hi hold them for every rank (identical on all).
         unsigned int st_begin = 0, st_end = 0, lo = 0, hi = 0, g_lo = 0,
-                     g_hi = 0;
+                     g_hi   = 0;
         std::size_t n_local = 0, own_b = 0, own_e = 0, act_b = 0, act_e = 0;
         std::vector<unsigned int> ghost_lo, ghost_hi;
         unsigned long n_ghost_growths = 0;
@@ -214,8 +275,6 @@ namespace YarnImpact
         // --- state (local spheres, cross-section-major)
         // ------------------------
         std::vector<double> pos, vel, frc;
-        std::vector<float> pos_build;
-        std::vector<std::uint32_t> bin_of;
         std::vector<std::uint8_t> broken; // truss (s, s+1) of each sphere
         std::vector<double> xi_p;         // projectile tangential history
         std::vector<std::uint64_t> proj_step;
@@ -230,19 +289,10 @@ namespace YarnImpact
 
         // --- neighbour lists
         // ---------------------------------------------------
-        std::vector<std::uint32_t> pstart, pstart_old;
-        std::vector<Pair> pairs, pairs_old;
-        std::vector<double> pxi, pxi_old;
-        std::vector<MirrorPair> mpairs, mpairs_old;
-        std::vector<double> mxi, mxi_old;
-
-        // Bins along x (the build frame) and the rebuild criterion.
-        double bin_x0 = 0., bin_h = 1.;
-        unsigned int n_bins = 0;
-        std::vector<std::uint32_t> bin_count;
-        std::vector<double> D_prev, D_sum;
-        double r2_max            = 0.;
-        unsigned long n_rebuilds = 0;
+        // Blocks of `prm.list_block` storage cross-sections each.
+        std::vector<ListBlock> blocks;
+        unsigned long n_rebuilds = 0;  // block rebuilds
+        double rebuilt_rows      = 0.; // sum of the rebuilt rows [spheres]
 
         // Scratch of the rebuild (kept to avoid reallocation).
         std::vector<std::uint32_t> bin_start, bin_sphere, cell_off, cell_start,
@@ -289,10 +339,15 @@ namespace YarnImpact
         exchange_ghosts(std::vector<double> &v);
         void
         compute_station_extents(const unsigned int s);
+        ListBlock &
+        block_of(const std::size_t i)
+        {
+          return blocks[i / (static_cast<std::size_t>(prm.list_block) * nf)];
+        }
         void
-        accumulate_criterion(const std::size_t i);
+        accumulate_criterion(ListBlock &B, const std::size_t i);
         bool
-        lists_valid();
+        lists_valid(ListBlock &B);
         unsigned int
         slab_begin(const unsigned int q) const
         {
@@ -304,7 +359,11 @@ namespace YarnImpact
         bool
         check_locality();
         void
-        rebuild();
+        set_block_ranges();
+        void
+        rebuild_all();
+        void
+        rebuild(ListBlock &B);
         double
         truss_strain(const std::size_t i, double *length = nullptr) const;
         double
@@ -465,6 +524,15 @@ namespace YarnImpact
             ghost_lo[q] = (q == 0 ? 0 : slab_begin(q) - G);
             ghost_hi[q] = (q + 1 == n_ranks ? n_st : slab_begin(q + 1) + G);
           }
+        // List blocks over the storage cross-sections.
+        const unsigned int K = prm.list_block;
+        for (unsigned int s = lo; s < hi; s += K)
+          {
+            ListBlock B;
+            B.s_begin = s;
+            B.s_end   = std::min(hi, s + K);
+            blocks.push_back(std::move(B));
+          }
         set_active_range();
       }
 
@@ -476,6 +544,32 @@ namespace YarnImpact
         g_hi  = ghost_hi[rank];
         act_b = local_index(g_lo, 0);
         act_e = local_index(g_hi, 0);
+        set_block_ranges();
+      }
+
+
+      void
+      Model::set_block_ranges()
+      {
+        // Rows: the active part of each block. Halo: at least the next
+        // `Ghost stations` cross-sections (more after a growth), within the
+        // active range. Every block is rebuilt after this.
+        for (ListBlock &B : blocks)
+          {
+            B.row_begin   = std::max(B.s_begin, g_lo);
+            B.row_end     = std::min(B.s_end, g_hi);
+            B.holds_plane = x_sym && B.row_begin == 0 && B.active();
+            if (!B.active())
+              {
+                B.row_end  = B.row_begin;
+                B.halo_end = B.row_begin;
+                continue;
+              }
+            B.halo_end =
+              std::min(g_hi,
+                       std::max(B.halo_end, B.row_end + prm.ghost_stations));
+            B.stale = true;
+          }
       }
 
 
@@ -498,8 +592,6 @@ namespace YarnImpact
         pos.assign(3 * n_local, 0.);
         vel.assign(3 * n_local, 0.);
         frc.assign(3 * n_local, 0.);
-        pos_build.assign(3 * n_local, 0.f);
-        bin_of.assign(n_local, 0);
         broken.assign(n_local, 0);
         xi_p.assign(3 * n_local, 0.);
         proj_step.assign(n_local, 0);
@@ -533,16 +625,21 @@ namespace YarnImpact
           }
         dealii::Utilities::MPI::max(initial_width, comm, initial_width);
 
-        rebuild();
+        rebuild_all();
         if (check_locality())
-          rebuild(); // storage holds the initial positions of every station
+          rebuild_all(); // storage holds the initial positions of every station
+        for (ListBlock &B : blocks)
+          if (B.stale && B.active())
+            rebuild(B); // a halo grew
         forces_consumed = true;
 
         const double E0 = 0.5 * projectile.mass() * projectile.velocity() *
                           projectile.velocity();
         if (rank == 0)
           {
-            unsigned long n_pairs = pairs.size();
+            unsigned long n_pairs = 0;
+            for (const ListBlock &B : blocks)
+              n_pairs += B.pairs.size();
             out << std::setprecision(5) << "[dem] " << nf_whole
                 << " fibres (hexagonal packing scale " << packing_scale << "), "
                 << n_whole_stations << " spheres per fibre, spacing "
@@ -576,19 +673,20 @@ namespace YarnImpact
 
 
       inline void
-      Model::accumulate_criterion(const std::size_t i)
+      Model::accumulate_criterion(ListBlock &B, const std::size_t i)
       {
-        const std::uint32_t b = bin_of[i];
-        const double dx       = pos[3 * i] - pos_build[3 * i];
-        const double dy       = pos[3 * i + 1] - pos_build[3 * i + 1];
-        const double dz       = pos[3 * i + 2] - pos_build[3 * i + 2];
-        const double rx       = dx - D_prev[3 * b];
-        const double ry       = dy - D_prev[3 * b + 1];
-        const double rz       = dz - D_prev[3 * b + 2];
-        r2_max                = std::max(r2_max, rx * rx + ry * ry + rz * rz);
-        D_sum[3 * b] += dx;
-        D_sum[3 * b + 1] += dy;
-        D_sum[3 * b + 2] += dz;
+        const std::size_t k   = i - B.b;
+        const std::uint32_t b = B.bin_of[k];
+        const double dx       = pos[3 * i] - B.pos_build[3 * k];
+        const double dy       = pos[3 * i + 1] - B.pos_build[3 * k + 1];
+        const double dz       = pos[3 * i + 2] - B.pos_build[3 * k + 2];
+        const double rx       = dx - B.D_prev[3 * b];
+        const double ry       = dy - B.D_prev[3 * b + 1];
+        const double rz       = dz - B.D_prev[3 * b + 2];
+        B.r2_max              = std::max(B.r2_max, rx * rx + ry * ry + rz * rz);
+        B.D_sum[3 * b] += dx;
+        B.D_sum[3 * b + 1] += dy;
+        B.D_sum[3 * b + 2] += dz;
       }
 
 
@@ -605,6 +703,7 @@ namespace YarnImpact
             const double as      = kick * sinv[s];
             const double xm      = xmask[s];
             const std::size_t b0 = local_index(s, 0);
+            ListBlock &B         = block_of(b0);
             double xlo = infinity, xhi = -infinity, ymax = -infinity;
             for (unsigned int f = 0; f < nf; ++f)
               {
@@ -620,7 +719,7 @@ namespace YarnImpact
                 xlo  = std::min(xlo, x[3 * i]);
                 xhi  = std::max(xhi, x[3 * i]);
                 ymax = std::max(ymax, x[3 * i + 1]);
-                accumulate_criterion(i);
+                accumulate_criterion(B, i);
               }
             st_xlo[s]  = xlo;
             st_xhi[s]  = xhi;
@@ -723,6 +822,29 @@ namespace YarnImpact
                              "x = 0 (it passed through its own mirror "
                              "image); run the case with Symmetry = none");
           }
+        // List blocks: every cross-section above the rows of a block that
+        // comes within d + L0 of their x-range joins the block's halo (with
+        // two more), and the block is rebuilt; the same argument as for the
+        // ghost layers below. Cross-sections below the rows list their pairs
+        // with the rows in their own block.
+        const double reach = d + L0;
+        for (ListBlock &B : blocks)
+          {
+            if (!B.active())
+              continue;
+            double Xlo = infinity, Xhi = -infinity;
+            for (unsigned int s = B.row_begin; s < B.row_end; ++s)
+              {
+                Xlo = std::min(Xlo, (*lo_x)[s]);
+                Xhi = std::max(Xhi, (*hi_x)[s]);
+              }
+            for (unsigned int t = B.halo_end; t < g_hi; ++t)
+              if (!((*lo_x)[t] > Xhi + reach || (*hi_x)[t] < Xlo - reach))
+                {
+                  B.halo_end = std::min(g_hi, t + 3);
+                  B.stale    = true;
+                }
+          }
         if (n_ranks == 1)
           return false;
         // Ghost layers: every cross-section that comes within d + L0 of the
@@ -732,8 +854,7 @@ namespace YarnImpact
         // missing on one side, and L0 is more than any sphere moves
         // relative to another in a step. It can only take stations from the
         // neighbouring slab.
-        const double reach = d + L0;
-        bool grown         = false;
+        bool grown = false;
         for (unsigned int q = 0; q < n_ranks; ++q)
           {
             const unsigned int b = slab_begin(q), e = slab_begin(q + 1);
@@ -782,7 +903,7 @@ namespace YarnImpact
 
 
       bool
-      Model::lists_valid()
+      Model::lists_valid(ListBlock &B)
       {
         // Criterion (doc/dem.md, "Neighbour lists"): with D_b the reference
         // displacement of build bin b, r = max |Delta_i - D_b(i)| and
@@ -791,79 +912,105 @@ namespace YarnImpact
         // pairs in z = 0, + 2 |D_0,x| for mirror pairs in x = 0) < skin.
         double g = 0., dz = 0.;
         int prev = -1;
-        for (unsigned int b = 0; b < n_bins; ++b)
+        for (unsigned int b = 0; b < B.n_bins; ++b)
           {
-            if (bin_count[b] == 0)
+            if (B.bin_count[b] == 0)
               continue;
             if (prev >= 0)
               {
-                const double ex = D_prev[3 * b] - D_prev[3 * prev];
-                const double ey = D_prev[3 * b + 1] - D_prev[3 * prev + 1];
-                const double ez = D_prev[3 * b + 2] - D_prev[3 * prev + 2];
+                const double ex = B.D_prev[3 * b] - B.D_prev[3 * prev];
+                const double ey = B.D_prev[3 * b + 1] - B.D_prev[3 * prev + 1];
+                const double ez = B.D_prev[3 * b + 2] - B.D_prev[3 * prev + 2];
                 g = std::max(g, std::sqrt(ex * ex + ey * ey + ez * ez));
               }
-            dz   = std::max(dz, std::abs(D_prev[3 * b + 2]));
+            dz   = std::max(dz, std::abs(B.D_prev[3 * b + 2]));
             prev = b;
           }
         // Rounding of the single-precision build positions.
         const double margin = 8. * 6e-8 * shared.yarn.length;
-        last_r              = std::sqrt(r2_max);
-        last_g              = g;
+        last_r              = std::max(last_r, std::sqrt(B.r2_max));
+        last_g              = std::max(last_g, g);
         // Mirror pairs in x = 0: 2 |D_0,x| of bin 0 (which starts at x = 0).
         const double dx0 =
-          (x_sym && lo == 0 && n_bins > 0 ? std::abs(D_prev[0]) : 0.);
-        const double bound = 2. * std::sqrt(r2_max) + 2. * g +
+          (B.holds_plane && B.n_bins > 0 ? std::abs(B.D_prev[0]) : 0.);
+        const double bound = 2. * std::sqrt(B.r2_max) + 2. * g +
                              (z_sym ? 2. * dz : 0.) + 2. * dx0 + margin;
         // New reference: the mean displacement of each bin.
-        for (unsigned int b = 0; b < n_bins; ++b)
-          if (bin_count[b] > 0)
+        for (unsigned int b = 0; b < B.n_bins; ++b)
+          if (B.bin_count[b] > 0)
             for (unsigned int c = 0; c < 3; ++c)
-              D_prev[3 * b + c] = D_sum[3 * b + c] / bin_count[b];
-        std::fill(D_sum.begin(), D_sum.end(), 0.);
-        r2_max = 0.;
+              B.D_prev[3 * b + c] = B.D_sum[3 * b + c] / B.bin_count[b];
+        std::fill(B.D_sum.begin(), B.D_sum.end(), 0.);
+        B.r2_max = 0.;
         return bound < prm.skin;
       }
 
 
       void
-      Model::rebuild()
+      Model::rebuild_all()
+      {
+        for (ListBlock &B : blocks)
+          if (B.active())
+            rebuild(B);
+      }
+
+
+      void
+      Model::rebuild(ListBlock &B)
       {
         ++n_rebuilds;
+        B.stale = false;
+        // The spheres of the build: rows and halo.
+        B.old_b = B.b;
+        B.old_e = B.e;
+        B.b     = local_index(B.row_begin, 0);
+        B.e     = local_index(B.row_end, 0);
+        B.h     = local_index(B.halo_end, 0);
+        rebuilt_rows += B.e - B.b;
+        const std::size_t sb = B.b, se = B.h, n_build = se - sb;
         const double cut2 = cutoff * cutoff;
-        // Bins along x over the local spheres (owned and ghosts).
+        // Bins along x over the spheres of the block (owned and ghosts).
         double xmin = infinity, xmax = -infinity;
-        for (std::size_t i = act_b; i < act_e; ++i)
+        for (std::size_t i = sb; i < se; ++i)
           {
             xmin = std::min(xmin, pos[3 * i]);
             xmax = std::max(xmax, pos[3 * i]);
           }
-        bin_h  = cutoff;
-        bin_x0 = xmin;
-        n_bins = static_cast<unsigned int>((xmax - xmin) / bin_h) + 1;
+        B.bin_h  = cutoff;
+        B.bin_x0 = xmin;
+        B.n_bins = static_cast<unsigned int>((xmax - xmin) / B.bin_h) + 1;
+        const unsigned int n_bins             = B.n_bins;
+        std::vector<std::uint32_t> &bin_count = B.bin_count;
         bin_count.assign(n_bins, 0);
-        D_prev.assign(3 * n_bins, 0.);
-        D_sum.assign(3 * n_bins, 0.);
-        r2_max = 0.;
-        for (std::size_t i = act_b; i < act_e; ++i)
+        B.D_prev.assign(3 * n_bins, 0.);
+        B.D_sum.assign(3 * n_bins, 0.);
+        B.r2_max = 0.;
+        B.bin_of.resize(n_build);
+        B.pos_build.resize(3 * n_build);
+        const auto bin_of = [&](const std::size_t i) -> std::uint32_t & {
+          return B.bin_of[i - sb];
+        };
+        for (std::size_t i = sb; i < se; ++i)
           {
             const auto b =
               std::min<std::uint32_t>(static_cast<std::uint32_t>(
-                                        (pos[3 * i] - xmin) / bin_h),
+                                        (pos[3 * i] - xmin) / B.bin_h),
                                       n_bins - 1);
-            bin_of[i] = b;
+            bin_of(i) = b;
             ++bin_count[b];
             for (unsigned int c = 0; c < 3; ++c)
-              pos_build[3 * i + c] = static_cast<float>(pos[3 * i + c]);
+              B.pos_build[3 * (i - sb) + c] =
+                static_cast<float>(pos[3 * i + c]);
           }
         bin_start.assign(n_bins + 1, 0);
         for (unsigned int b = 0; b < n_bins; ++b)
           bin_start[b + 1] = bin_start[b] + bin_count[b];
-        bin_sphere.resize(act_e - act_b);
+        bin_sphere.resize(n_build);
         {
           std::vector<std::uint32_t> &fill = cell_sphere; // scratch
           fill.assign(bin_start.begin(), bin_start.end() - 1);
-          for (std::size_t i = act_b; i < act_e; ++i)
-            bin_sphere[fill[bin_of[i]]++] = i;
+          for (std::size_t i = sb; i < se; ++i)
+            bin_sphere[fill[bin_of(i)]++] = i;
         }
         // A 2D (y, z) cell grid in each bin, cells no smaller than the
         // cut-off, so a 3x3 block of cells holds every partner.
@@ -900,11 +1047,11 @@ namespace YarnImpact
           }
         const std::uint32_t n_cells         = cell_off[n_bins];
         std::vector<std::uint32_t> &cell_of = near_sphere; // scratch
-        cell_of.resize(n_local);
+        cell_of.resize(n_build);
         cell_start.assign(n_cells + 1, 0);
-        for (std::size_t i = act_b; i < act_e; ++i)
+        for (std::size_t i = sb; i < se; ++i)
           {
-            const std::uint32_t b = bin_of[i];
+            const std::uint32_t b = bin_of(i);
             const auto cy         = static_cast<std::uint32_t>(
               (pos[3 * i + 1] - bin_y0[b]) * bin_ic[b]);
             const auto cz = static_cast<std::uint32_t>(
@@ -912,17 +1059,17 @@ namespace YarnImpact
             const std::uint32_t c = cell_off[b] +
                                     std::min(cy, bin_ny[b] - 1) * bin_nz[b] +
                                     std::min(cz, bin_nz[b] - 1);
-            cell_of[i] = c;
+            cell_of[i - sb] = c;
             ++cell_start[c + 1];
           }
         for (std::uint32_t c = 0; c < n_cells; ++c)
           cell_start[c + 1] += cell_start[c];
-        cell_sphere.resize(n_local);
+        cell_sphere.resize(n_build);
         {
           std::vector<std::uint32_t> fill(cell_start.begin(),
                                           cell_start.end() - 1);
-          for (std::size_t i = act_b; i < act_e; ++i)
-            cell_sphere[fill[cell_of[i]]++] = i;
+          for (std::size_t i = sb; i < se; ++i)
+            cell_sphere[fill[cell_of[i - sb]]++] = i;
         }
 
         // Candidate pairs: same bin (j > i) and next bin. The positions are
@@ -942,12 +1089,13 @@ namespace YarnImpact
             cell_z[k]           = pos[3 * j + 2];
           }
         bin_owned.assign(n_bins + 1, 0);
-        for (std::size_t i = own_b; i < own_e; ++i)
-          bin_owned[bin_of[i]] = 1;
+        for (std::size_t i = std::max(own_b, sb); i < std::min(own_e, se); ++i)
+          bin_owned[bin_of(i)] = 1;
         found.clear();
-        for (std::size_t i = act_b; i < act_e; ++i)
+        const std::size_t row_e = B.e;
+        for (std::size_t i = sb; i < se; ++i)
           {
-            const std::uint32_t b = bin_of[i];
+            const std::uint32_t b = bin_of(i);
             const bool i_owned    = owned(i);
             if (!i_owned && !bin_owned[b] && !bin_owned[b + 1])
               continue;
@@ -980,7 +1128,8 @@ namespace YarnImpact
                           continue;
                         const std::size_t j = cell_sphere[k];
                         if ((bb == b && j <= i) || (!i_owned && !owned(j)) ||
-                            j == i + nf || j + nf == i) // chain neighbours
+                            j == i + nf || j + nf == i || // chain neighbours
+                            (i >= row_e && j >= row_e))   // a later block's
                           continue;
                         found.emplace_back(std::min<std::size_t>(i, j),
                                            std::max<std::size_t>(i, j));
@@ -991,27 +1140,32 @@ namespace YarnImpact
 
         // New CSR list, rows sorted by j; carry the tangential history of
         // pairs that stay listed.
+        std::vector<std::uint32_t> &pstart     = B.pstart,
+                                   &pstart_old = B.pstart_old;
+        std::vector<Pair> &pairs = B.pairs, &pairs_old = B.pairs_old;
+        std::vector<double> &pxi = B.pxi, &pxi_old = B.pxi_old;
         std::swap(pstart, pstart_old);
         std::swap(pairs, pairs_old);
         std::swap(pxi, pxi_old);
-        pstart.assign(n_local + 1, 0);
+        const std::size_t n_rows = B.e - B.b;
+        pstart.assign(n_rows + 1, 0);
         for (const auto &p : found)
-          ++pstart[p.first + 1];
-        for (std::size_t i = 0; i < n_local; ++i)
-          pstart[i + 1] += pstart[i];
+          ++pstart[p.first - sb + 1];
+        for (std::size_t r = 0; r < n_rows; ++r)
+          pstart[r + 1] += pstart[r];
         pairs.resize(found.size());
         pxi.assign(3 * found.size(), 0.);
         {
           std::vector<std::uint32_t> &fill = cell_of; // scratch again
           fill.assign(pstart.begin(), pstart.end() - 1);
           for (const auto &p : found)
-            pairs[fill[p.first]++] = {p.second, 1.f};
+            pairs[fill[p.first - sb]++] = {p.second, 1.f};
         }
-        const bool have_old = pstart_old.size() == n_local + 1;
-        for (std::size_t i = act_b; i < act_e; ++i)
+        const bool have_old = pstart_old.size() == B.old_e - B.old_b + 1;
+        for (std::size_t i = B.b; i < B.e; ++i)
           {
-            Pair *row             = pairs.data() + pstart[i];
-            const std::uint32_t n = pstart[i + 1] - pstart[i];
+            Pair *row             = pairs.data() + pstart[i - sb];
+            const std::uint32_t n = pstart[i - sb + 1] - pstart[i - sb];
             std::sort(row, row + n, [](const Pair &a, const Pair &b) {
               return a.j < b.j;
             });
@@ -1023,10 +1177,11 @@ namespace YarnImpact
               for (std::uint32_t k = 0; k < n; ++k)
                 if (zmask[row[k].j % nf] == 0.)
                   row[k].w *= 0.5f; // both on the plane z = 0
-            if (!have_old)
+            if (!have_old || i < B.old_b || i >= B.old_e)
               continue;
             // Merge with the old row.
-            std::uint32_t q = pstart_old[i], q_end = pstart_old[i + 1];
+            std::uint32_t q     = pstart_old[i - B.old_b],
+                          q_end = pstart_old[i - B.old_b + 1];
             for (std::uint32_t k = 0; k < n; ++k)
               {
                 while (q < q_end && pairs_old[q].j < row[k].j)
@@ -1035,7 +1190,7 @@ namespace YarnImpact
                     pairs_old[q].w < 0.f)
                   {
                     row[k].w            = -row[k].w;
-                    const std::size_t p = pstart[i] + k;
+                    const std::size_t p = pstart[i - sb] + k;
                     for (unsigned int c = 0; c < 3; ++c)
                       pxi[3 * p + c] = pxi_old[3 * q + c];
                   }
@@ -1046,6 +1201,8 @@ namespace YarnImpact
         // themselves, in the symmetry planes (doc/dem.md section 4: the
         // candidates below are every pair whose image distance can drop
         // below d while the criterion holds).
+        std::vector<MirrorPair> &mpairs = B.mpairs, &mpairs_old = B.mpairs_old;
+        std::vector<double> &mxi = B.mxi, &mxi_old = B.mxi_old;
         std::swap(mpairs, mpairs_old);
         std::swap(mxi, mxi_old);
         mpairs.clear();
@@ -1053,7 +1210,11 @@ namespace YarnImpact
                                     const std::size_t j,
                                     const std::uint8_t axes,
                                     const double w) {
-          if (!owned(i) && !owned(j))
+          // Pairs in z = 0 belong to the block of the lower index; pairs in
+          // x = 0 all to the block holding the plane, whose build holds
+          // every sphere that can come near the plane.
+          if ((!owned(i) && !owned(j)) ||
+              (!(axes & 1) && std::min(i, j) >= row_e))
             return;
           const double sx = (axes & 1) ? -1. : 1., sz = (axes & 2) ? -1. : 1.;
           const double ex = pos[3 * i] - sx * pos[3 * j],
@@ -1082,7 +1243,7 @@ namespace YarnImpact
               for (std::size_t c = a; c < near_sphere.size(); ++c)
                 {
                   const std::size_t i = near_sphere[a], j = near_sphere[c];
-                  if (bin_of[j] > bin_of[i] + 1)
+                  if (bin_of(j) > bin_of(i) + 1)
                     break;
                   add_mirror(i,
                              j,
@@ -1096,7 +1257,7 @@ namespace YarnImpact
         // bin 0 starts at x = 0): spheres off that plane in bins 0 and 1,
         // every pair; with quarter symmetry also the images in both planes
         // of spheres off both planes and within the cut-off of z = 0.
-        if (x_sym && lo == 0)
+        if (B.holds_plane)
           {
             near_x.clear();
             const std::uint32_t k_end = bin_start[std::min(2u, n_bins)];
@@ -1144,18 +1305,28 @@ namespace YarnImpact
         // Criterion contributions of the ghosts (the owned ones were added
         // during the drift).
         for (std::size_t i = act_b; i < own_b; ++i)
-          accumulate_criterion(i);
+          accumulate_criterion(block_of(i), i);
         for (std::size_t i = own_e; i < act_e; ++i)
-          accumulate_criterion(i);
+          accumulate_criterion(block_of(i), i);
+        for (ListBlock &B : blocks)
+          for (std::size_t i = B.e; i < B.h; ++i)
+            accumulate_criterion(B, i);
+        last_r = last_g = 0.;
         if (check_locality())
           {
             // New ghost cross-sections: fetch them and list their pairs.
             exchange_ghosts(pos);
             exchange_ghosts(vel);
-            rebuild();
+            rebuild_all();
           }
-        else if (!lists_valid())
-          rebuild();
+        else
+          for (ListBlock &B : blocks)
+            if (B.active())
+              {
+                const bool valid = lists_valid(B); // always: new reference
+                if (!valid || B.stale)
+                  rebuild(B);
+              }
 
         double *__restrict x = pos.data();
         double *__restrict v = vel.data();
@@ -1203,93 +1374,105 @@ namespace YarnImpact
 
         // Fibre-fibre contacts.
         const double d2 = d * d;
-        for (std::size_t i = act_b; i < act_e; ++i)
+        for (ListBlock &B : blocks)
           {
-            const std::uint32_t p0 = pstart[i], p1 = pstart[i + 1];
-            if (p0 == p1)
-              continue;
-            const double xi = x[3 * i], yi = x[3 * i + 1], zi = x[3 * i + 2];
-            double fx = 0., fy_ = 0., fz_ = 0.;
-            for (std::uint32_t p = p0; p < p1; ++p)
+            const std::uint32_t *__restrict pstart = B.pstart.data() - B.b;
+            Pair *__restrict pairs                 = B.pairs.data();
+            double *__restrict pxi                 = B.pxi.data();
+            for (std::size_t i = B.b; i < B.e; ++i)
               {
-                const std::size_t j = pairs[p].j;
-                const double ex = xi - x[3 * j], ey = yi - x[3 * j + 1],
-                             ez = zi - x[3 * j + 2];
-                const double r2 = ex * ex + ey * ey + ez * ez;
-                if (r2 >= d2)
+                const std::uint32_t p0 = pstart[i], p1 = pstart[i + 1];
+                if (p0 == p1)
+                  continue;
+                const double xi = x[3 * i], yi = x[3 * i + 1],
+                             zi = x[3 * i + 2];
+                double fx = 0., fy_ = 0., fz_ = 0.;
+                for (std::uint32_t p = p0; p < p1; ++p)
                   {
-                    if (pairs[p].w < 0.f)
+                    const std::size_t j = pairs[p].j;
+                    const double ex = xi - x[3 * j], ey = yi - x[3 * j + 1],
+                                 ez = zi - x[3 * j + 2];
+                    const double r2 = ex * ex + ey * ey + ez * ez;
+                    if (r2 >= d2)
                       {
-                        pairs[p].w     = -pairs[p].w;
-                        pxi[3 * p]     = 0.;
-                        pxi[3 * p + 1] = 0.;
-                        pxi[3 * p + 2] = 0.;
+                        if (pairs[p].w < 0.f)
+                          {
+                            pairs[p].w     = -pairs[p].w;
+                            pxi[3 * p]     = 0.;
+                            pxi[3 * p + 1] = 0.;
+                            pxi[3 * p + 2] = 0.;
+                          }
+                        continue;
                       }
-                    continue;
+                    if (pairs[p].w > 0.f)
+                      pairs[p].w = -pairs[p].w;
+                    const double w     = -pairs[p].w;
+                    const double dist  = std::sqrt(r2);
+                    const double n[3]  = {ex / dist, ey / dist, ez / dist};
+                    const double vr[3] = {v[3 * i] - v[3 * j],
+                                          v[3 * i + 1] - v[3 * j + 1],
+                                          v[3 * i + 2] - v[3 * j + 2]};
+                    double f[3], diss = 0.;
+                    fibre_law.force(d - dist, n, vr, dt, &pxi[3 * p], f, diss);
+                    fx += w * f[0];
+                    fy_ += w * f[1];
+                    fz_ += w * f[2];
+                    F[3 * j] -= w * f[0];
+                    F[3 * j + 1] -= w * f[1];
+                    F[3 * j + 2] -= w * f[2];
+                    dissipated += w * own_factor(i, j) * diss;
                   }
-                if (pairs[p].w > 0.f)
-                  pairs[p].w = -pairs[p].w;
-                const double w     = -pairs[p].w;
-                const double dist  = std::sqrt(r2);
-                const double n[3]  = {ex / dist, ey / dist, ez / dist};
-                const double vr[3] = {v[3 * i] - v[3 * j],
-                                      v[3 * i + 1] - v[3 * j + 1],
-                                      v[3 * i + 2] - v[3 * j + 2]};
-                double f[3], diss = 0.;
-                fibre_law.force(d - dist, n, vr, dt, &pxi[3 * p], f, diss);
-                fx += w * f[0];
-                fy_ += w * f[1];
-                fz_ += w * f[2];
-                F[3 * j] -= w * f[0];
-                F[3 * j + 1] -= w * f[1];
-                F[3 * j + 2] -= w * f[2];
-                dissipated += w * own_factor(i, j) * diss;
+                F[3 * i] += fx;
+                F[3 * i + 1] += fy_;
+                F[3 * i + 2] += fz_;
               }
-            F[3 * i] += fx;
-            F[3 * i + 1] += fy_;
-            F[3 * i + 2] += fz_;
           }
 
         // Mirror pairs: i with the image of j; j feels the mirror image of
         // the reaction (nothing more for a self-image pair).
-        for (std::size_t p = 0; p < mpairs.size(); ++p)
+        for (ListBlock &B : blocks)
           {
-            MirrorPair &mp      = mpairs[p];
-            const std::size_t i = mp.i, j = mp.j;
-            const double sx = (mp.axes & 1) ? -1. : 1.,
-                         sz = (mp.axes & 2) ? -1. : 1.;
-            const double ex = x[3 * i] - sx * x[3 * j],
-                         ey = x[3 * i + 1] - x[3 * j + 1],
-                         ez = x[3 * i + 2] - sz * x[3 * j + 2];
-            const double r2 = ex * ex + ey * ey + ez * ez;
-            if (r2 >= d2)
+            std::vector<MirrorPair> &mpairs = B.mpairs;
+            std::vector<double> &mxi        = B.mxi;
+            for (std::size_t p = 0; p < mpairs.size(); ++p)
               {
-                if (mp.active)
+                MirrorPair &mp      = mpairs[p];
+                const std::size_t i = mp.i, j = mp.j;
+                const double sx = (mp.axes & 1) ? -1. : 1.,
+                             sz = (mp.axes & 2) ? -1. : 1.;
+                const double ex = x[3 * i] - sx * x[3 * j],
+                             ey = x[3 * i + 1] - x[3 * j + 1],
+                             ez = x[3 * i + 2] - sz * x[3 * j + 2];
+                const double r2 = ex * ex + ey * ey + ez * ez;
+                if (r2 >= d2)
                   {
-                    mp.active  = false;
-                    mxi[3 * p] = mxi[3 * p + 1] = mxi[3 * p + 2] = 0.;
+                    if (mp.active)
+                      {
+                        mp.active  = false;
+                        mxi[3 * p] = mxi[3 * p + 1] = mxi[3 * p + 2] = 0.;
+                      }
+                    continue;
                   }
-                continue;
+                mp.active          = true;
+                const double dist  = std::sqrt(r2);
+                const double n[3]  = {ex / dist, ey / dist, ez / dist};
+                const double vr[3] = {v[3 * i] - sx * v[3 * j],
+                                      v[3 * i + 1] - v[3 * j + 1],
+                                      v[3 * i + 2] - sz * v[3 * j + 2]};
+                double f[3], diss = 0.;
+                fibre_law.force(d - dist, n, vr, dt, &mxi[3 * p], f, diss);
+                const double w = mp.w;
+                F[3 * i] += w * f[0];
+                F[3 * i + 1] += w * f[1];
+                F[3 * i + 2] += w * f[2];
+                if (j != i)
+                  {
+                    F[3 * j] -= w * sx * f[0];
+                    F[3 * j + 1] -= w * f[1];
+                    F[3 * j + 2] -= w * sz * f[2];
+                  }
+                dissipated += w * (i == j ? 0.5 : 1.) * own_factor(i, j) * diss;
               }
-            mp.active          = true;
-            const double dist  = std::sqrt(r2);
-            const double n[3]  = {ex / dist, ey / dist, ez / dist};
-            const double vr[3] = {v[3 * i] - sx * v[3 * j],
-                                  v[3 * i + 1] - v[3 * j + 1],
-                                  v[3 * i + 2] - sz * v[3 * j + 2]};
-            double f[3], diss = 0.;
-            fibre_law.force(d - dist, n, vr, dt, &mxi[3 * p], f, diss);
-            const double w = mp.w;
-            F[3 * i] += w * f[0];
-            F[3 * i + 1] += w * f[1];
-            F[3 * i + 2] += w * f[2];
-            if (j != i)
-              {
-                F[3 * j] -= w * sx * f[0];
-                F[3 * j + 1] -= w * f[1];
-                F[3 * j + 2] -= w * sz * f[2];
-              }
-            dissipated += w * (i == j ? 0.5 : 1.) * own_factor(i, j) * diss;
           }
 
         // Projectile: only cross-sections that can reach it.
@@ -1426,32 +1609,41 @@ namespace YarnImpact
         // Truss (st_begin - 1, st_begin) belongs to the rank on the left.
 
         // Contacts.
-        for (std::size_t i = act_b; i < act_e; ++i)
-          for (std::uint32_t p = pstart[i]; p < pstart[i + 1]; ++p)
-            if (pairs[p].w < 0.f)
-              {
-                const std::size_t j = pairs[p].j;
-                double r2           = 0.;
-                for (unsigned int c = 0; c < 3; ++c)
-                  r2 += std::pow(pos[3 * i + c] - pos[3 * j + c], 2);
-                const double delta = std::max(0., d - std::sqrt(r2));
-                contact += -pairs[p].w * own_factor(i, j) *
-                           fibre_law.energy(delta, &pxi[3 * p]);
-              }
-        for (std::size_t p = 0; p < mpairs.size(); ++p)
-          if (mpairs[p].active)
-            {
-              const std::size_t i = mpairs[p].i, j = mpairs[p].j;
-              const double sx = (mpairs[p].axes & 1) ? -1. : 1.,
-                           sz = (mpairs[p].axes & 2) ? -1. : 1.;
-              const double r2 =
-                std::pow(pos[3 * i] - sx * pos[3 * j], 2) +
-                std::pow(pos[3 * i + 1] - pos[3 * j + 1], 2) +
-                std::pow(pos[3 * i + 2] - sz * pos[3 * j + 2], 2);
-              const double delta = std::max(0., d - std::sqrt(r2));
-              contact += mpairs[p].w * (i == j ? 0.5 : 1.) * own_factor(i, j) *
-                         fibre_law.energy(delta, &mxi[3 * p]);
-            }
+        for (const ListBlock &B : blocks)
+          {
+            const std::uint32_t *pstart           = B.pstart.data() - B.b;
+            const std::vector<Pair> &pairs        = B.pairs;
+            const std::vector<double> &pxi        = B.pxi;
+            const std::vector<MirrorPair> &mpairs = B.mpairs;
+            const std::vector<double> &mxi        = B.mxi;
+            for (std::size_t i = B.b; i < B.e; ++i)
+              for (std::uint32_t p = pstart[i]; p < pstart[i + 1]; ++p)
+                if (pairs[p].w < 0.f)
+                  {
+                    const std::size_t j = pairs[p].j;
+                    double r2           = 0.;
+                    for (unsigned int c = 0; c < 3; ++c)
+                      r2 += std::pow(pos[3 * i + c] - pos[3 * j + c], 2);
+                    const double delta = std::max(0., d - std::sqrt(r2));
+                    contact += -pairs[p].w * own_factor(i, j) *
+                               fibre_law.energy(delta, &pxi[3 * p]);
+                  }
+            for (std::size_t p = 0; p < mpairs.size(); ++p)
+              if (mpairs[p].active)
+                {
+                  const std::size_t i = mpairs[p].i, j = mpairs[p].j;
+                  const double sx = (mpairs[p].axes & 1) ? -1. : 1.,
+                               sz = (mpairs[p].axes & 2) ? -1. : 1.;
+                  const double r2 =
+                    std::pow(pos[3 * i] - sx * pos[3 * j], 2) +
+                    std::pow(pos[3 * i + 1] - pos[3 * j + 1], 2) +
+                    std::pow(pos[3 * i + 2] - sz * pos[3 * j + 2], 2);
+                  const double delta = std::max(0., d - std::sqrt(r2));
+                  contact += mpairs[p].w * (i == j ? 0.5 : 1.) *
+                             own_factor(i, j) *
+                             fibre_law.energy(delta, &mxi[3 * p]);
+                }
+          }
         // Projectile contacts of the last force evaluation (the positions
         // have not moved since).
         for (std::size_t i = own_b; i < own_e; ++i)

@@ -99,6 +99,15 @@ namespace YarnImpact
                         "fibres slide along each other across a rank "
                         "boundary, e.g. when cut fibres recoil; this value "
                         "only sets where it starts [-].");
+      prm.declare_entry("List block",
+                        "32",
+                        Patterns::Integer(),
+                        "Cross-sections per neighbour-list block. Each block "
+                        "of a rank's cross-sections keeps its own neighbour "
+                        "list and rebuild criterion and is rebuilt on its "
+                        "own, so that the fast spheres under the projectile "
+                        "rebuild only the lists near the impact. The results "
+                        "do not depend on it, only the speed [-].");
       prm.leave_subsection();
     }
 
@@ -150,6 +159,7 @@ namespace YarnImpact
       require(c >= 0, "DEM/Coordination number", "must not be negative");
       coordination   = static_cast<unsigned int>(c);
       ghost_stations = get_positive_integer(prm, "DEM", "Ghost stations");
+      list_block     = get_positive_integer(prm, "DEM", "List block");
       prm.leave_subsection();
     }
   } // namespace DEM

@@ -64,6 +64,9 @@ namespace YarnImpact
        * the layer grows by itself when fibres slide across a rank
        * boundary [-]. */
       unsigned int ghost_stations = 4;
+      /** Cross-sections per neighbour-list block: each block is rebuilt on
+       * its own when its criterion fails (doc/dem.md section 4) [-]. */
+      unsigned int list_block = 32;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
