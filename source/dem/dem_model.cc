@@ -200,31 +200,34 @@ namespace YarnImpact
         std::string
         statistics() const
         {
-          // Collective: every rank's rebuilds and pairs.
-          std::vector<unsigned long> counts(2 * n_ranks, 0);
+          // Collective: every rank's rebuilds and pairs. Rebuilds are
+          // counted per block and in whole-rank equivalents (rebuilt rows
+          // divided by the rows of the rank).
+          std::vector<unsigned long> counts(3 * n_ranks, 0);
           unsigned long n_pairs = 0, n_rows = 0;
           for (const ListBlock &B : blocks)
             {
               n_pairs += B.pairs.size();
               n_rows += B.e - B.b;
             }
-          // Rebuilds counted in whole-rank equivalents (rebuilt rows / rows).
-          const unsigned long mine[2] = {
+          const unsigned long mine[3] = {
+            n_rebuilds,
             static_cast<unsigned long>(rebuilt_rows / std::max(1ul, n_rows) +
                                        0.5),
             n_pairs};
           MPI_Allgather(mine,
-                        2,
+                        3,
                         MPI_UNSIGNED_LONG,
                         counts.data(),
-                        2,
+                        3,
                         MPI_UNSIGNED_LONG,
                         comm);
           std::ostringstream s;
-          s << step_count << " force evaluations; rebuilds (listed pairs) per "
-            << "rank:";
+          s << step_count << " force evaluations; block rebuilds, in whole-"
+            << "rank equivalents (listed pairs), per rank:";
           for (unsigned int q = 0; q < n_ranks; ++q)
-            s << " " << counts[2 * q] << " (" << counts[2 * q + 1] << ")";
+            s << " " << counts[3 * q] << ", " << counts[3 * q + 1] << " ("
+              << counts[3 * q + 2] << ")";
           s << "; rank " << rank << " last bound terms r " << last_r << " g "
             << last_g << " m";
           return s.str();
@@ -291,7 +294,8 @@ namespace YarnImpact
         // ---------------------------------------------------
         // Blocks of `prm.list_block` storage cross-sections each.
         std::vector<ListBlock> blocks;
-        unsigned long n_rebuilds = 0;  // block rebuilds
+        std::vector<unsigned int> station_block; // of each storage station
+        unsigned long n_rebuilds = 0;            // block rebuilds
         double rebuilt_rows      = 0.; // sum of the rebuilt rows [spheres]
 
         // Scratch of the rebuild (kept to avoid reallocation).
@@ -342,8 +346,10 @@ namespace YarnImpact
         ListBlock &
         block_of(const std::size_t i)
         {
-          return blocks[i / (static_cast<std::size_t>(prm.list_block) * nf)];
+          return blocks[station_block[i / nf]];
         }
+        void
+        absorb(ListBlock &B, ListBlock &C);
         void
         accumulate_criterion(ListBlock &B, const std::size_t i);
         bool
@@ -531,6 +537,8 @@ namespace YarnImpact
             ListBlock B;
             B.s_begin = s;
             B.s_end   = std::min(hi, s + K);
+            for (unsigned int t = B.s_begin; t < B.s_end; ++t)
+              station_block.push_back(blocks.size());
             blocks.push_back(std::move(B));
           }
         set_active_range();
@@ -844,6 +852,18 @@ namespace YarnImpact
                   B.halo_end = std::min(g_hi, t + 3);
                   B.stale    = true;
                 }
+            // A block whose halo covers the next block takes it over: its
+            // criterion already follows those spheres, so the other block's
+            // own lists would only be rebuilt as often at extra cost (after
+            // fibres were cut and slid, halos span many blocks).
+            for (ListBlock *C = &B + 1; C < blocks.data() + blocks.size(); ++C)
+              {
+                if (C->s_begin == C->s_end)
+                  continue; // taken over before
+                if (!C->active() || B.halo_end < C->row_end)
+                  break;
+                absorb(B, *C);
+              }
           }
         if (n_ranks == 1)
           return false;
@@ -943,6 +963,52 @@ namespace YarnImpact
         std::fill(B.D_sum.begin(), B.D_sum.end(), 0.);
         B.r2_max = 0.;
         return bound < prm.skin;
+      }
+
+
+      void
+      Model::absorb(ListBlock &B, ListBlock &C)
+      {
+        // C's rows follow B's: its lists append to B's, with their
+        // tangential history, and B is rebuilt from them.
+        AssertThrow(B.e == C.b, dealii::ExcInternalError());
+        const auto offset = static_cast<std::uint32_t>(B.pairs.size());
+        for (std::size_t r = 1; r < C.pstart.size(); ++r)
+          B.pstart.push_back(C.pstart[r] + offset);
+        B.pairs.insert(B.pairs.end(), C.pairs.begin(), C.pairs.end());
+        B.pxi.insert(B.pxi.end(), C.pxi.begin(), C.pxi.end());
+        if (!C.mpairs.empty())
+          {
+            std::vector<std::size_t> order(B.mpairs.size() + C.mpairs.size());
+            std::vector<MirrorPair> mp(B.mpairs);
+            mp.insert(mp.end(), C.mpairs.begin(), C.mpairs.end());
+            std::vector<double> xi(B.mxi);
+            xi.insert(xi.end(), C.mxi.begin(), C.mxi.end());
+            for (std::size_t k = 0; k < order.size(); ++k)
+              order[k] = k;
+            std::sort(order.begin(),
+                      order.end(),
+                      [&](const std::size_t a, const std::size_t b) {
+                        return mirror_less(mp[a], mp[b]);
+                      });
+            B.mpairs.resize(order.size());
+            B.mxi.resize(3 * order.size());
+            for (std::size_t k = 0; k < order.size(); ++k)
+              {
+                B.mpairs[k] = mp[order[k]];
+                for (unsigned int c = 0; c < 3; ++c)
+                  B.mxi[3 * k + c] = xi[3 * order[k] + c];
+              }
+          }
+        B.e        = C.e;
+        B.s_end    = C.s_end;
+        B.row_end  = C.row_end;
+        B.halo_end = std::max(B.halo_end, C.halo_end);
+        B.stale    = true;
+        for (unsigned int t = C.s_begin; t < C.s_end; ++t)
+          station_block[t - lo] = station_block[B.s_begin - lo];
+        C         = ListBlock();
+        C.s_begin = C.s_end = B.s_end;
       }
 
 
@@ -1088,16 +1154,23 @@ namespace YarnImpact
             cell_y[k]           = pos[3 * j + 1];
             cell_z[k]           = pos[3 * j + 2];
           }
-        bin_owned.assign(n_bins + 1, 0);
-        for (std::size_t i = std::max(own_b, sb); i < std::min(own_e, se); ++i)
-          bin_owned[bin_of(i)] = 1;
-        found.clear();
+        // A sphere is searched only if its bin or the next holds a sphere
+        // it can be listed with: an owned one if it is a ghost, one of the
+        // rows if it is in the halo, an owned one of the rows if both (the
+        // halo can be large after fibres were cut and slid).
         const std::size_t row_e = B.e;
+        bin_owned.assign(n_bins + 1, 0);
+        for (std::size_t i = sb; i < se; ++i)
+          bin_owned[bin_of(i)] |= (owned(i) ? 1 : 0) | (i < row_e ? 2 : 0) |
+                                  (owned(i) && i < row_e ? 4 : 0);
+        found.clear();
         for (std::size_t i = sb; i < se; ++i)
           {
             const std::uint32_t b = bin_of(i);
             const bool i_owned    = owned(i);
-            if (!i_owned && !bin_owned[b] && !bin_owned[b + 1])
+            const std::uint8_t need =
+              (i_owned ? (i < row_e ? 0 : 2) : (i < row_e ? 1 : 4));
+            if (need != 0 && !((bin_owned[b] | bin_owned[b + 1]) & need))
               continue;
             const double xi = pos[3 * i], yi = pos[3 * i + 1],
                          zi = pos[3 * i + 2];
@@ -1253,19 +1326,31 @@ namespace YarnImpact
                                : 1.);
                 }
           }
-        // In x = 0 (half, quarter; only the rank holding the plane, whose
+        // In x = 0 (half, quarter; only the block holding the plane, whose
         // bin 0 starts at x = 0): spheres off that plane in bins 0 and 1,
         // every pair; with quarter symmetry also the images in both planes
-        // of spheres off both planes and within the cut-off of z = 0.
+        // of spheres off both planes and within the cut-off of z = 0. An
+        // image distance below the cut-off needs x_i + x_j < h, so only
+        // bin 0 can contribute, and |y_i - y_j| < cut-off: the candidates
+        // are swept in order of y (thousands of spheres gather at the plane
+        // once the fibres are cut there).
         if (B.holds_plane)
           {
             near_x.clear();
-            const std::uint32_t k_end = bin_start[std::min(2u, n_bins)];
+            const std::uint32_t k_end = bin_start[std::min(1u, n_bins)];
             for (std::uint32_t k = 0; k < k_end; ++k)
               if (bin_sphere[k] >= nf)
                 near_x.push_back(bin_sphere[k]);
+            std::sort(near_x.begin(),
+                      near_x.end(),
+                      [&](const std::uint32_t a, const std::uint32_t b) {
+                        return pos[3 * a + 1] < pos[3 * b + 1];
+                      });
             for (std::size_t a = 0; a < near_x.size(); ++a)
-              for (std::size_t c = a; c < near_x.size(); ++c)
+              for (std::size_t c = a;
+                   c < near_x.size() &&
+                   pos[3 * near_x[c] + 1] < pos[3 * near_x[a] + 1] + cutoff;
+                   ++c)
                 {
                   const std::size_t i = near_x[a], j = near_x[c];
                   const bool zi = z_sym && zmask[i % nf] == 0.,
