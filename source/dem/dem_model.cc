@@ -1461,12 +1461,13 @@ namespace YarnImpact
         const double d2 = d * d;
         for (ListBlock &B : blocks)
           {
-            const std::uint32_t *__restrict pstart = B.pstart.data() - B.b;
+            const std::uint32_t *__restrict pstart = B.pstart.data();
             Pair *__restrict pairs                 = B.pairs.data();
             double *__restrict pxi                 = B.pxi.data();
             for (std::size_t i = B.b; i < B.e; ++i)
               {
-                const std::uint32_t p0 = pstart[i], p1 = pstart[i + 1];
+                const std::uint32_t p0 = pstart[i - B.b],
+                                    p1 = pstart[i - B.b + 1];
                 if (p0 == p1)
                   continue;
                 const double xi = x[3 * i], yi = x[3 * i + 1],
@@ -1696,13 +1697,14 @@ namespace YarnImpact
         // Contacts.
         for (const ListBlock &B : blocks)
           {
-            const std::uint32_t *pstart           = B.pstart.data() - B.b;
+            const std::uint32_t *pstart           = B.pstart.data();
             const std::vector<Pair> &pairs        = B.pairs;
             const std::vector<double> &pxi        = B.pxi;
             const std::vector<MirrorPair> &mpairs = B.mpairs;
             const std::vector<double> &mxi        = B.mxi;
             for (std::size_t i = B.b; i < B.e; ++i)
-              for (std::uint32_t p = pstart[i]; p < pstart[i + 1]; ++p)
+              for (std::uint32_t p = pstart[i - B.b]; p < pstart[i - B.b + 1];
+                   ++p)
                 if (pairs[p].w < 0.f)
                   {
                     const std::size_t j = pairs[p].j;
