@@ -75,8 +75,8 @@ namespace YarnImpact
          * (which grows when other cross-sections come near the rows). */
         unsigned int row_begin = 0, row_end = 0, halo_end = 0;
         /** Spheres of the rows [b, e) and of the halo [e, h) at the last
-         * build; rows of the previous list [old_b, old_e). */
-        std::size_t b = 0, e = 0, h = 0, old_b = 0, old_e = 0;
+         * build. */
+        std::size_t b = 0, e = 0, h = 0;
         /** The cross-sections changed since the last build. */
         bool stale = true;
         /** The rows hold the plane x = 0 (mirror pairs in x). */
@@ -91,8 +91,8 @@ namespace YarnImpact
         /** Build positions [m] and build bins of the spheres [b, h). */
         std::vector<float> pos_build;
         std::vector<std::uint32_t> bin_of;
-        /** Bins along x of the build and their reference displacements. */
-        double bin_x0 = 0., bin_h = 1.;
+        /** Bins along x of the build (width d + skin, from the lowest
+         * sphere) and their reference displacements. */
         unsigned int n_bins = 0;
         std::vector<std::uint32_t> bin_count;
         std::vector<double> D_prev, D_sum;
@@ -204,17 +204,14 @@ namespace YarnImpact
           // counted per block and in whole-rank equivalents (rebuilt rows
           // divided by the rows of the rank).
           std::vector<unsigned long> counts(3 * n_ranks, 0);
-          unsigned long n_pairs = 0, n_rows = 0;
+          const unsigned long n_pairs = n_listed_pairs();
+          unsigned long n_rows        = 0;
           for (const ListBlock &B : blocks)
-            {
-              n_pairs += B.pairs.size();
-              n_rows += B.e - B.b;
-            }
-          const unsigned long mine[3] = {
-            n_rebuilds,
-            static_cast<unsigned long>(rebuilt_rows / std::max(1ul, n_rows) +
-                                       0.5),
-            n_pairs};
+            n_rows += B.e - B.b;
+          const unsigned long mine[3] = {n_rebuilds,
+                                         (rebuilt_rows + n_rows / 2) /
+                                           std::max(1ul, n_rows),
+                                         n_pairs};
           MPI_Allgather(mine,
                         3,
                         MPI_UNSIGNED_LONG,
@@ -295,8 +292,8 @@ namespace YarnImpact
         // Blocks of `prm.list_block` storage cross-sections each.
         std::vector<ListBlock> blocks;
         std::vector<unsigned int> station_block; // of each storage station
-        unsigned long n_rebuilds = 0;            // block rebuilds
-        double rebuilt_rows      = 0.; // sum of the rebuilt rows [spheres]
+        unsigned long n_rebuilds   = 0;          // block rebuilds
+        unsigned long rebuilt_rows = 0; // sum of the rebuilt rows [spheres]
 
         // Scratch of the rebuild (kept to avoid reallocation).
         std::vector<std::uint32_t> bin_start, bin_sphere, cell_off, cell_start,
@@ -305,7 +302,7 @@ namespace YarnImpact
         std::vector<std::uint32_t> bin_ny, bin_nz;
         std::vector<std::pair<std::uint32_t, std::uint32_t>> found;
         std::vector<double> cell_x, cell_y, cell_z;
-        std::vector<std::uint8_t> bin_owned;
+        std::vector<std::uint8_t> bin_partners;
 
         // --- energy accounting (local)
         // ----------------------------------------
@@ -343,6 +340,15 @@ namespace YarnImpact
         exchange_ghosts(std::vector<double> &v);
         void
         compute_station_extents(const unsigned int s);
+        /** Pairs in the neighbour lists of this rank. */
+        unsigned long
+        n_listed_pairs() const
+        {
+          unsigned long n = 0;
+          for (const ListBlock &B : blocks)
+            n += B.pairs.size();
+          return n;
+        }
         ListBlock &
         block_of(const std::size_t i)
         {
@@ -366,8 +372,10 @@ namespace YarnImpact
         check_locality();
         void
         set_block_ranges();
+        /** Rebuild the lists of the blocks that are stale or whose criterion
+         * fails (when @p check_criterion). */
         void
-        rebuild_all();
+        update_lists(const bool check_criterion);
         void
         rebuild(ListBlock &B);
         double
@@ -633,21 +641,21 @@ namespace YarnImpact
           }
         dealii::Utilities::MPI::max(initial_width, comm, initial_width);
 
-        rebuild_all();
-        if (check_locality())
-          rebuild_all(); // storage holds the initial positions of every station
+        // The first lists, then those of the blocks whose cross-sections
+        // changed with the first locality check (storage holds the initial
+        // positions of every station).
         for (ListBlock &B : blocks)
-          if (B.stale && B.active())
-            rebuild(B); // a halo grew
+          if (B.active())
+            rebuild(B);
+        check_locality();
+        update_lists(false);
         forces_consumed = true;
 
         const double E0 = 0.5 * projectile.mass() * projectile.velocity() *
                           projectile.velocity();
         if (rank == 0)
           {
-            unsigned long n_pairs = 0;
-            for (const ListBlock &B : blocks)
-              n_pairs += B.pairs.size();
+            const unsigned long n_pairs = n_listed_pairs();
             out << std::setprecision(5) << "[dem] " << nf_whole
                 << " fibres (hexagonal packing scale " << packing_scale << "), "
                 << n_whole_stations << " spheres per fibre, spacing "
@@ -1013,11 +1021,18 @@ namespace YarnImpact
 
 
       void
-      Model::rebuild_all()
+      Model::update_lists(const bool check_criterion)
       {
+        // The criterion is evaluated for every block, also a stale one: it
+        // moves the reference displacements on.
+        last_r = last_g = 0.;
         for (ListBlock &B : blocks)
           if (B.active())
-            rebuild(B);
+            {
+              const bool valid = !check_criterion || lists_valid(B);
+              if (!valid || B.stale)
+                rebuild(B);
+            }
       }
 
 
@@ -1026,12 +1041,12 @@ namespace YarnImpact
       {
         ++n_rebuilds;
         B.stale = false;
-        // The spheres of the build: rows and halo.
-        B.old_b = B.b;
-        B.old_e = B.e;
-        B.b     = local_index(B.row_begin, 0);
-        B.e     = local_index(B.row_end, 0);
-        B.h     = local_index(B.halo_end, 0);
+        // The spheres of the build: rows and halo; the rows of the list
+        // being replaced.
+        const std::size_t old_b = B.b, old_e = B.e;
+        B.b = local_index(B.row_begin, 0);
+        B.e = local_index(B.row_end, 0);
+        B.h = local_index(B.halo_end, 0);
         rebuilt_rows += B.e - B.b;
         const std::size_t sb = B.b, se = B.h, n_build = se - sb;
         const double cut2 = cutoff * cutoff;
@@ -1042,9 +1057,8 @@ namespace YarnImpact
             xmin = std::min(xmin, pos[3 * i]);
             xmax = std::max(xmax, pos[3 * i]);
           }
-        B.bin_h  = cutoff;
-        B.bin_x0 = xmin;
-        B.n_bins = static_cast<unsigned int>((xmax - xmin) / B.bin_h) + 1;
+        const double bin_h = cutoff;
+        B.n_bins = static_cast<unsigned int>((xmax - xmin) / bin_h) + 1;
         const unsigned int n_bins             = B.n_bins;
         std::vector<std::uint32_t> &bin_count = B.bin_count;
         bin_count.assign(n_bins, 0);
@@ -1060,7 +1074,7 @@ namespace YarnImpact
           {
             const auto b =
               std::min<std::uint32_t>(static_cast<std::uint32_t>(
-                                        (pos[3 * i] - xmin) / B.bin_h),
+                                        (pos[3 * i] - xmin) / bin_h),
                                       n_bins - 1);
             bin_of(i) = b;
             ++bin_count[b];
@@ -1159,10 +1173,10 @@ namespace YarnImpact
         // rows if it is in the halo, an owned one of the rows if both (the
         // halo can be large after fibres were cut and slid).
         const std::size_t row_e = B.e;
-        bin_owned.assign(n_bins + 1, 0);
+        bin_partners.assign(n_bins + 1, 0);
         for (std::size_t i = sb; i < se; ++i)
-          bin_owned[bin_of(i)] |= (owned(i) ? 1 : 0) | (i < row_e ? 2 : 0) |
-                                  (owned(i) && i < row_e ? 4 : 0);
+          bin_partners[bin_of(i)] |= (owned(i) ? 1 : 0) | (i < row_e ? 2 : 0) |
+                                     (owned(i) && i < row_e ? 4 : 0);
         found.clear();
         for (std::size_t i = sb; i < se; ++i)
           {
@@ -1170,7 +1184,7 @@ namespace YarnImpact
             const bool i_owned    = owned(i);
             const std::uint8_t need =
               (i_owned ? (i < row_e ? 0 : 2) : (i < row_e ? 1 : 4));
-            if (need != 0 && !((bin_owned[b] | bin_owned[b + 1]) & need))
+            if (need != 0 && !((bin_partners[b] | bin_partners[b + 1]) & need))
               continue;
             const double xi = pos[3 * i], yi = pos[3 * i + 1],
                          zi = pos[3 * i + 2];
@@ -1234,7 +1248,7 @@ namespace YarnImpact
           for (const auto &p : found)
             pairs[fill[p.first - sb]++] = {p.second, 1.f};
         }
-        const bool have_old = pstart_old.size() == B.old_e - B.old_b + 1;
+        const bool have_old = pstart_old.size() == old_e - old_b + 1;
         for (std::size_t i = B.b; i < B.e; ++i)
           {
             Pair *row             = pairs.data() + pstart[i - sb];
@@ -1250,11 +1264,11 @@ namespace YarnImpact
               for (std::uint32_t k = 0; k < n; ++k)
                 if (zmask[row[k].j % nf] == 0.)
                   row[k].w *= 0.5f; // both on the plane z = 0
-            if (!have_old || i < B.old_b || i >= B.old_e)
+            if (!have_old || i < old_b || i >= old_e)
               continue;
             // Merge with the old row.
-            std::uint32_t q     = pstart_old[i - B.old_b],
-                          q_end = pstart_old[i - B.old_b + 1];
+            std::uint32_t q     = pstart_old[i - old_b],
+                          q_end = pstart_old[i - old_b + 1];
             for (std::uint32_t k = 0; k < n; ++k)
               {
                 while (q < q_end && pairs_old[q].j < row[k].j)
@@ -1396,22 +1410,13 @@ namespace YarnImpact
         for (ListBlock &B : blocks)
           for (std::size_t i = B.e; i < B.h; ++i)
             accumulate_criterion(B, i);
-        last_r = last_g = 0.;
         if (check_locality())
           {
-            // New ghost cross-sections: fetch them and list their pairs.
+            // New ghost cross-sections: fetch them; every block is stale.
             exchange_ghosts(pos);
             exchange_ghosts(vel);
-            rebuild_all();
           }
-        else
-          for (ListBlock &B : blocks)
-            if (B.active())
-              {
-                const bool valid = lists_valid(B); // always: new reference
-                if (!valid || B.stale)
-                  rebuild(B);
-              }
+        update_lists(true);
 
         double *__restrict x = pos.data();
         double *__restrict v = vel.data();
