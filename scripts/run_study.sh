@@ -15,13 +15,14 @@ np=$(nproc)
 
 # Section 2: the FE model alone, Charmetant and linear law; section 1: the
 # FE density from the fibres (runs C, D, B).
-for run in fe_hyper fe_linear fe_hyperdens; do
+for run in fe_hyper fe_linear fe_hyperdens fe_hyper_section; do
   build/yarn-impact "prm/study/$run.prm" > /dev/null
 done
 echo "## FE laws and density (doc/validation.md sections 1 and 2)"
 /usr/bin/python3 scripts/history_table.py \
   "Charmetant=results/fe_study/hyper/history_fe.csv" \
   "linear TI=results/fe_study/linear/history_fe.csv" \
+  "Charmetant, section refined twice=results/fe_study/hyper_section/history_fe.csv" \
   "Charmetant, density from fibres=results/fe_study/hyperdens/history_fe.csv" \
   "DEM (default case)=results/default/history_dem.csv"
 
