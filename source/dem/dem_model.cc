@@ -6,6 +6,7 @@
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/core/projectile.h>
+#include <yarn_impact/dem/candidate_search.h>
 #include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/dem/packing.h>
@@ -13,10 +14,6 @@
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#  include <immintrin.h>
-#endif
 
 #include <algorithm>
 #include <cmath>
@@ -61,113 +58,6 @@ namespace YarnImpact
       {
         return a.i < b.i ||
                (a.i == b.i && (a.j < b.j || (a.j == b.j && a.axes < b.axes)));
-      }
-
-
-      /** A run [k0, k1) of consecutive entries of the cell-ordered
-       * positions of a list build (the cells of one row of a 3 x 3 block). */
-      struct CandidateRun
-      {
-        std::uint32_t k0, k1;
-      };
-
-      /** The candidate search of a list build: appends to @p out the
-       * entries k of the @p n_runs @p runs whose single-precision position
-       * (@p cx, @p cy, @p cz)[k] lies closer than sqrt(@p r2) to (@p x,
-       * @p y, @p z) [m, m^2; relative to the build's origin], in the order
-       * of the runs; returns the new end of @p out. A filter only: the
-       * caller passes a radius enlarged by the rounding bound and tests the
-       * survivors in double precision, so the lists do not depend on the
-       * CPU (doc/dem.md section 4). Up to 7 entries past every run are
-       * read. */
-      std::uint32_t *
-      near_in_runs_generic(const float *cx,
-                           const float *cy,
-                           const float *cz,
-                           const CandidateRun *runs,
-                           const unsigned int n_runs,
-                           const float x,
-                           const float y,
-                           const float z,
-                           const float r2,
-                           std::uint32_t *out)
-      {
-        for (unsigned int r = 0; r < n_runs; ++r)
-          for (std::uint32_t k = runs[r].k0; k < runs[r].k1; ++k)
-            {
-              const float ex = x - cx[k], ey = y - cy[k], ez = z - cz[k];
-              *out = k;
-              out += (ex * ex + ey * ey + ez * ez < r2);
-            }
-        return out;
-      }
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-      // Eight candidates per instruction: the search is about 70 % of a
-      // rebuild and most candidates fail the test (a sphere has about 50
-      // candidates and 6 neighbours). Dispatched on the CPU's features like
-      // the FE cell kernel.
-      __attribute__((target("avx2,fma"))) std::uint32_t *
-      near_in_runs_avx2(const float *cx,
-                        const float *cy,
-                        const float *cz,
-                        const CandidateRun *runs,
-                        const unsigned int n_runs,
-                        const float x,
-                        const float y,
-                        const float z,
-                        const float r2,
-                        std::uint32_t *out)
-      {
-        const __m256 X = _mm256_set1_ps(x), Y = _mm256_set1_ps(y),
-                     Z = _mm256_set1_ps(z), R = _mm256_set1_ps(r2);
-        for (unsigned int r = 0; r < n_runs; ++r)
-          for (std::uint32_t k = runs[r].k0; k < runs[r].k1; k += 8)
-            {
-              const __m256 ex = _mm256_sub_ps(X, _mm256_loadu_ps(cx + k));
-              const __m256 ey = _mm256_sub_ps(Y, _mm256_loadu_ps(cy + k));
-              const __m256 ez = _mm256_sub_ps(Z, _mm256_loadu_ps(cz + k));
-              __m256 e2       = _mm256_mul_ps(ex, ex);
-              e2              = _mm256_fmadd_ps(ey, ey, e2);
-              e2              = _mm256_fmadd_ps(ez, ez, e2);
-              unsigned int m  = static_cast<unsigned int>(
-                _mm256_movemask_ps(_mm256_cmp_ps(e2, R, _CMP_LT_OQ)));
-              const std::uint32_t left = runs[r].k1 - k;
-              if (left < 8)
-                m &= (1u << left) - 1u;
-              while (m != 0)
-                {
-                  *out++ = k + static_cast<std::uint32_t>(__builtin_ctz(m));
-                  m &= m - 1u;
-                }
-            }
-        return out;
-      }
-
-      const bool cpu_has_avx2 =
-        __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#endif
-
-      /** near_in_runs_generic() or its AVX2 twin, whichever the CPU runs. */
-      inline std::uint32_t *
-      near_in_runs(const float *cx,
-                   const float *cy,
-                   const float *cz,
-                   const CandidateRun *runs,
-                   const unsigned int n_runs,
-                   const float x,
-                   const float y,
-                   const float z,
-                   const float r2,
-                   std::uint32_t *out)
-      {
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-        if (cpu_has_avx2)
-          return near_in_runs_avx2(
-            cx, cy, cz, runs, n_runs, x, y, z, r2, out);
-#endif
-        return near_in_runs_generic(
-          cx, cy, cz, runs, n_runs, x, y, z, r2, out);
       }
 
 
