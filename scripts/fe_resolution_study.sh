@@ -37,14 +37,17 @@ def v(t):
     r = min(rows, key=lambda r: abs(float(r["t [us]"]) - t))
     return float(r["projectile velocity [m/s]"])
 fail = next((round(float(r["t [us]"]), 2) for r in rows if int(r["failed elements"]) > 0), None)
-cut = None
-for line in open(d + "/summary.txt"):
-    if "yarn cut through:" in line and "us" in line:
-        cut = float(line.split()[-2])
+cut, summary = None, True
+try:
+    for line in open(d + "/summary.txt"):
+        if "yarn cut through:" in line and "us" in line:
+            cut = float(line.split()[-2])
+except FileNotFoundError:  # a run stopped by an error writes no summary
+    summary = False
 cells = 12 * 4 ** section * axial
 error = [l.split("yarn-impact: error: ", 1)[1].strip() for l in open(d + ".log") if "yarn-impact: error: " in l]
 print(f"| {axial} | {section} | {cells} | {v(10):.2f} | {v(20):.2f} | {v(25):.2f} | {v(30):.2f} | "
-      f"{fail if fail is not None else 'none'} | {cut if cut is not None else 'no'} | {wall:.0f} |"
+      f"{fail if fail is not None else 'none'} | {cut if cut is not None else ('no' if summary else '-')} | {wall:.0f} |"
       + (f" stopped: {error[0]}" if error else ""))
 PY
   done

@@ -1,9 +1,10 @@
 #!/bin/bash
-# The whole study of doc/validation.md in one command (several hours on the
-# 2-core machine): the default case (FE and DEM side by side, figures), the
-# FE alone with the hyperelastic law, the linear law and the density from
-# the fibres, the FE resolution study, and the DEM contact-stiffness and
-# friction sensitivity runs; prints the tables of doc/validation.md.
+# The whole study of doc/validation.md in one command (about 22 minutes on
+# the 2-core machine, 11 of them the default case): the default case (FE
+# and DEM side by side, figures), the FE alone with the hyperelastic law,
+# the linear law, the density from the fibres and a refined section, the FE
+# resolution study, and the DEM contact-stiffness and friction sensitivity
+# runs; prints the tables of doc/validation.md.
 #   bash scripts/run_study.sh            (after or instead of run_default.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,8 +14,8 @@ np=$(nproc)
 # Section 1 and 3: the paper's study with its figures (skipped if done).
 [ -f results/default/summary.txt ] || bash scripts/run_default.sh
 
-# Section 2: the FE model alone, Charmetant and linear law; section 1: the
-# FE density from the fibres (runs C, D, B).
+# Section 2: the FE model alone, Charmetant and linear law, refined section;
+# section 1: the FE density from the fibres (runs C, D, E, B).
 for run in fe_hyper fe_linear fe_hyperdens fe_hyper_section; do
   build/yarn-impact "prm/study/$run.prm" > /dev/null
 done
