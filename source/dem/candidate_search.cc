@@ -80,9 +80,9 @@ namespace YarnImpact
       }
 
       const NearInRuns vectorised =
-        (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) ?
-          &near_in_runs_avx2 :
-          nullptr;
+        (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+          ? &near_in_runs_avx2
+          : nullptr;
     } // namespace
 #endif
 
@@ -98,23 +98,11 @@ namespace YarnImpact
     }
 
 
-    std::uint32_t *
-    near_in_runs(const float *cx,
-                 const float *cy,
-                 const float *cz,
-                 const CandidateRun *runs,
-                 const unsigned int n_runs,
-                 const float x,
-                 const float y,
-                 const float z,
-                 const float r2,
-                 std::uint32_t *out)
+    NearInRuns
+    near_in_runs_for_this_cpu()
     {
-#ifdef YARN_IMPACT_DEM_AVX2
-      if (vectorised != nullptr)
-        return vectorised(cx, cy, cz, runs, n_runs, x, y, z, r2, out);
-#endif
-      return near_in_runs_generic(cx, cy, cz, runs, n_runs, x, y, z, r2, out);
+      const NearInRuns v = near_in_runs_vectorised();
+      return v != nullptr ? v : &near_in_runs_generic;
     }
   } // namespace DEM
 } // namespace YarnImpact

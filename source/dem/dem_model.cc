@@ -228,8 +228,7 @@ namespace YarnImpact
               << counts[3 * q + 2] << ")";
           s << "; rank " << rank << " last bound terms r " << last_r << " g "
             << last_g << " m, candidates per searched sphere "
-            << static_cast<double>(n_candidates) /
-                 std::max(1ul, n_searched);
+            << static_cast<double>(n_candidates) / std::max(1ul, n_searched);
           return s.str();
         }
 
@@ -1162,11 +1161,8 @@ namespace YarnImpact
         // copied in cell order, so that the three cells of a row of the
         // 3 x 3 block are one contiguous run, in single precision relative
         // to the build's origin for the vectorised filter (most candidates
-        // fail it) and in double for the exact test of the survivors. Its
-        // radius is enlarged by a bound on the rounding: each coordinate
-        // and the query point are off by at most 2^-24 of the largest
-        // magnitude M, a distance by sqrt(3) 2^-23 M plus the rounding of
-        // the differences; 4e-7 (M + cut-off) is twice that.
+        // fail it; its radius is enlarged by the rounding bound) and in
+        // double for the exact test of the survivors.
         const std::size_t n_cand = cell_sphere.size();
         cell_x.resize(n_cand);
         cell_y.resize(n_cand);
@@ -1190,9 +1186,8 @@ namespace YarnImpact
           }
         for (std::size_t k = n_cand; k < n_cand + 8; ++k)
           cell_xf[k] = cell_yf[k] = cell_zf[k] = 0.f;
-        const double radius_f = cutoff + 4e-7 * (magnitude + cutoff);
-        const auto r2_f =
-          static_cast<float>(radius_f * radius_f * (1. + 1e-6));
+        const float r2_f        = filter_radius2(cutoff, magnitude);
+        const NearInRuns filter = near_in_runs_for_this_cpu();
         candidate_k.resize(n_cand);
         // A sphere is searched only if its bin or the next holds a sphere
         // it can be listed with: an owned one if it is a ghost, one of the
@@ -1237,23 +1232,23 @@ namespace YarnImpact
                   {
                     const std::uint32_t row = cell_off[bb] + a * nz;
                     runs[n_runs++]          = {cell_start[row + c0],
-                                      cell_start[row + c1 + 1]};
+                                               cell_start[row + c1 + 1]};
                   }
               }
             ++n_searched;
             for (unsigned int r = 0; r < n_runs; ++r)
               n_candidates += runs[r].k1 - runs[r].k0;
             const std::uint32_t *const k_end =
-              near_in_runs(cell_xf.data(),
-                           cell_yf.data(),
-                           cell_zf.data(),
-                           runs,
-                           n_runs,
-                           static_cast<float>(xi - xmin),
-                           static_cast<float>(yi),
-                           static_cast<float>(zi),
-                           r2_f,
-                           candidate_k.data());
+              filter(cell_xf.data(),
+                     cell_yf.data(),
+                     cell_zf.data(),
+                     runs,
+                     n_runs,
+                     static_cast<float>(xi - xmin),
+                     static_cast<float>(yi),
+                     static_cast<float>(zi),
+                     r2_f,
+                     candidate_k.data());
             for (const std::uint32_t *q = candidate_k.data(); q != k_end; ++q)
               {
                 const std::uint32_t k = *q;

@@ -16,11 +16,34 @@
 
 using namespace YarnImpact::DEM;
 
+namespace
+{
+  /** Entries of @p sub that are not found, in their order, in @p seq: 0
+   * if and only if @p sub is a subsequence of @p seq. */
+  unsigned long
+  not_in_order(const std::vector<std::uint32_t> &sub,
+               const std::vector<std::uint32_t> &seq)
+  {
+    unsigned long n = 0;
+    std::size_t a   = 0;
+    for (const std::uint32_t k : sub)
+      {
+        while (a < seq.size() && seq[a] != k)
+          ++a;
+        if (a == seq.size())
+          ++n;
+        else
+          ++a;
+      }
+    return n;
+  }
+} // namespace
+
 int
 main()
 {
-  const double cutoff = 16e-6;          // d + skin [m]
-  const double offset = 10e-3;          // coordinates as far as 10 mm
+  const double cutoff = 16e-6; // d + skin [m]
+  const double offset = 10e-3; // coordinates as far as 10 mm
   const double box[3] = {200e-6, 120e-6, 300e-6};
   std::mt19937 random(2026);
   std::uniform_real_distribution<double> unit(0., 1.);
@@ -55,9 +78,9 @@ main()
       if (q % 2 == 0)
         for (unsigned int s = 0; s < 6; ++s)
           {
-            double e[3] = {unit(random) - 0.5,
-                           unit(random) - 0.5,
-                           unit(random) - 0.5};
+            double e[3]    = {unit(random) - 0.5,
+                              unit(random) - 0.5,
+                              unit(random) - 0.5};
             const double n = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
             const double r = cutoff * (s % 2 == 0 ? 1. - 1e-9 : 1. + 1e-9);
             add(c[0] + r * e[0] / n, c[1] + r * e[1] / n, c[2] + r * e[2] / n);
@@ -70,8 +93,8 @@ main()
   double magnitude = 0.;
   for (std::size_t k = 0; k < n; ++k)
     magnitude = std::max({magnitude, px[k], py[k], pz[k]});
-  const double radius_f = cutoff + 4e-7 * (magnitude + cutoff);
-  const auto r2_f = static_cast<float>(radius_f * radius_f * (1. + 1e-6));
+  const float r2_f      = filter_radius2(cutoff, magnitude);
+  const double radius_f = std::sqrt(static_cast<double>(r2_f));
   std::vector<float> cx(n + 8, 0.f), cy(n + 8, 0.f), cz(n + 8, 0.f);
   for (std::size_t k = 0; k < n; ++k)
     {
@@ -89,8 +112,7 @@ main()
   // the first one holds the query's shell, if it has one.
   std::uniform_int_distribution<std::uint32_t> length(0, 40), n_runs_of(0, 6);
   std::uniform_int_distribution<int> shift(-50, 10);
-  unsigned long within = 0, shell = 0, candidates = 0, missed = 0,
-                beyond = 0;
+  unsigned long within = 0, shell = 0, candidates = 0, missed = 0, beyond = 0;
   // A kept entry that is not next in the order of the runs counts as
   // beyond (the walks below are subsequence tests).
   std::vector<std::uint32_t> out(n);
@@ -99,17 +121,17 @@ main()
       const auto &c = queries[q];
       CandidateRun runs[6];
       unsigned int n_runs = n_runs_of(random);
-      const auto near = static_cast<int>(
-        std::lower_bound(points.begin(),
-                         points.end(),
-                         std::array<double, 3>{c[0], 0., 0.}) -
-        points.begin());
+      const auto near =
+        static_cast<int>(std::lower_bound(points.begin(),
+                                          points.end(),
+                                          std::array<double, 3>{c[0], 0., 0.}) -
+                         points.begin());
       for (unsigned int r = 0; r < n_runs; ++r)
         {
           const std::uint32_t l = length(random);
-          const int start =
-            (r % 3 == 2 ? static_cast<int>(unit(random) * n) : near + shift(random));
-          const auto k0 = static_cast<std::uint32_t>(
+          const int start = (r % 3 == 2 ? static_cast<int>(unit(random) * n)
+                                        : near + shift(random));
+          const auto k0   = static_cast<std::uint32_t>(
             std::clamp(start, 0, static_cast<int>(n - l)));
           runs[r] = {k0, k0 + l};
         }
@@ -125,7 +147,7 @@ main()
           {
             ++candidates;
             const double ex = c[0] - px[k], ey = c[1] - py[k],
-                         ez = c[2] - pz[k];
+                         ez   = c[2] - pz[k];
             const double dist = std::sqrt(ex * ex + ey * ey + ez * ez);
             if (dist < cutoff)
               {
@@ -150,25 +172,8 @@ main()
                                       out.data());
           const std::vector<std::uint32_t> kept(out.data(), end);
           // kept must be a subsequence of maybe containing all of inside.
-          std::size_t a = 0, b = 0;
-          for (const std::uint32_t k : kept)
-            {
-              while (a < maybe.size() && maybe[a] != k)
-                ++a;
-              if (a == maybe.size())
-                ++beyond;
-              else
-                ++a;
-            }
-          for (const std::uint32_t k : inside)
-            {
-              while (b < kept.size() && kept[b] != k)
-                ++b;
-              if (b == kept.size())
-                ++missed;
-              else
-                ++b;
-            }
+          beyond += not_in_order(kept, maybe);
+          missed += not_in_order(inside, kept);
         }
     }
   std::cout << "queries " << queries.size() << ", candidates " << candidates
