@@ -27,29 +27,21 @@ namespace YarnImpact
      * lists do not depend on the CPU. Up to 7 entries past every run are
      * read; @p out needs room for all the candidates of the runs.
      */
-    using NearInRuns = std::uint32_t *(*)(const float *cx,
-                                          const float *cy,
-                                          const float *cz,
-                                          const CandidateRun *runs,
-                                          unsigned int n_runs,
-                                          float x,
-                                          float y,
-                                          float z,
-                                          float r2,
-                                          std::uint32_t *out);
+    using NearInRunsFunction = std::uint32_t *(const float *cx,
+                                               const float *cy,
+                                               const float *cz,
+                                               const CandidateRun *runs,
+                                               unsigned int n_runs,
+                                               float x,
+                                               float y,
+                                               float z,
+                                               float r2,
+                                               std::uint32_t *out);
+    /** A filter (see NearInRunsFunction). */
+    using NearInRuns = NearInRunsFunction *;
 
-    /** The portable filter (one candidate at a time); see NearInRuns. */
-    std::uint32_t *
-    near_in_runs_generic(const float *cx,
-                         const float *cy,
-                         const float *cz,
-                         const CandidateRun *runs,
-                         unsigned int n_runs,
-                         float x,
-                         float y,
-                         float z,
-                         float r2,
-                         std::uint32_t *out);
+    /** The portable filter (one candidate at a time). */
+    NearInRunsFunction near_in_runs_generic;
 
     /**
      * The AVX2 filter (eight candidates per instruction), or nullptr where
