@@ -1198,73 +1198,106 @@ namespace YarnImpact
         for (std::size_t i = sb; i < se; ++i)
           bin_partners[bin_of(i)] |= (owned(i) ? 1 : 0) | (i < row_e ? 2 : 0) |
                                      (owned(i) && i < row_e ? 4 : 0);
+        // The spheres are searched in cell order: each pair is tested once.
+        // In its own bin a sphere looks only forward in that order (the
+        // rest of its cell, the next cell of its row, the next row's three
+        // cells: the half of the 3 x 3 block after it); in the next bin at
+        // the whole 3 x 3 block; pairs with the previous bin are found from
+        // there. The lists do not depend on the order of the search (rows
+        // are sorted by j below).
         found.clear();
-        for (std::size_t i = sb; i < se; ++i)
-          {
-            const std::uint32_t b = bin_of(i);
-            const bool i_owned    = owned(i);
-            const std::uint8_t need =
-              (i_owned ? (i < row_e ? 0 : 2) : (i < row_e ? 1 : 4));
-            if (need != 0 && !((bin_partners[b] | bin_partners[b + 1]) & need))
-              continue;
-            const double xi = pos[3 * i], yi = pos[3 * i + 1],
-                         zi = pos[3 * i + 2];
-            // The rows of the 3 x 3 blocks of cells in bins b and b + 1.
-            CandidateRun runs[6];
-            unsigned int n_runs      = 0;
-            const std::uint32_t k_b1 = bin_start[b + 1]; // bin b + 1 from here
-            for (std::uint32_t bb = b; bb <= b + 1 && bb < n_bins; ++bb)
+        for (std::uint32_t b = 0; b < n_bins; ++b)
+          for (std::uint32_t a = 0; a < bin_ny[b]; ++a)
+            for (std::uint32_t cz = 0; cz < bin_nz[b]; ++cz)
               {
-                if (bin_count[bb] == 0)
+                const std::uint32_t nz   = bin_nz[b];
+                const std::uint32_t cell = cell_off[b] + a * nz + cz;
+                const std::uint32_t k_c0 = cell_start[cell],
+                                    k_c1 = cell_start[cell + 1];
+                if (k_c0 == k_c1)
                   continue;
-                const long cy =
-                  static_cast<long>(std::floor((yi - bin_y0[bb]) * bin_ic[bb]));
-                const long cz =
-                  static_cast<long>(std::floor((zi - bin_z0[bb]) * bin_ic[bb]));
-                const long ny = bin_ny[bb], nz = bin_nz[bb];
-                const long c0 = std::max(0l, cz - 1),
-                           c1 = std::min(nz - 1, cz + 1);
-                if (c0 > c1)
-                  continue;
-                for (long a = std::max(0l, cy - 1);
-                     a <= std::min(ny - 1, cy + 1);
-                     ++a)
+                // Same bin: the end of the run in this row, and the run of
+                // the next row.
+                const std::uint32_t k_row_end =
+                  cell_start[cell_off[b] + a * nz + std::min(cz + 1, nz - 1) +
+                             1];
+                CandidateRun next_row = {0, 0};
+                if (a + 1 < bin_ny[b])
                   {
-                    const std::uint32_t row = cell_off[bb] + a * nz;
-                    runs[n_runs++]          = {cell_start[row + c0],
-                                               cell_start[row + c1 + 1]};
+                    const std::uint32_t row = cell_off[b] + (a + 1) * nz;
+                    next_row = {cell_start[row + (cz > 0 ? cz - 1 : 0)],
+                                cell_start[row + std::min(cz + 1, nz - 1) + 1]};
+                  }
+                for (std::uint32_t k_i = k_c0; k_i < k_c1; ++k_i)
+                  {
+                    const std::size_t i = cell_sphere[k_i];
+                    const bool i_owned  = owned(i);
+                    const std::uint8_t need =
+                      (i_owned ? (i < row_e ? 0 : 2) : (i < row_e ? 1 : 4));
+                    if (need != 0 &&
+                        !((bin_partners[b] | bin_partners[b + 1]) & need))
+                      continue;
+                    const double xi = cell_x[k_i], yi = cell_y[k_i],
+                                 zi = cell_z[k_i];
+                    CandidateRun runs[5];
+                    unsigned int n_runs = 0;
+                    runs[n_runs++]      = {k_i + 1, k_row_end};
+                    if (next_row.k1 > next_row.k0)
+                      runs[n_runs++] = next_row;
+                    // Next bin: the rows of the 3 x 3 block.
+                    const std::uint32_t bb = b + 1;
+                    if (bb < n_bins && bin_count[bb] > 0)
+                      {
+                        const long cy = static_cast<long>(
+                          std::floor((yi - bin_y0[bb]) * bin_ic[bb]));
+                        const long cz_ = static_cast<long>(
+                          std::floor((zi - bin_z0[bb]) * bin_ic[bb]));
+                        const long ny = bin_ny[bb], nz_ = bin_nz[bb];
+                        const long c0 = std::max(0l, cz_ - 1),
+                                   c1 = std::min(nz_ - 1, cz_ + 1);
+                        if (c0 <= c1)
+                          for (long r = std::max(0l, cy - 1);
+                               r <= std::min(ny - 1, cy + 1);
+                               ++r)
+                            {
+                              const std::uint32_t row = cell_off[bb] + r * nz_;
+                              runs[n_runs++]          = {cell_start[row + c0],
+                                                         cell_start[row + c1 + 1]};
+                            }
+                      }
+                    ++n_searched;
+                    for (unsigned int r = 0; r < n_runs; ++r)
+                      n_candidates += runs[r].k1 - runs[r].k0;
+                    const std::uint32_t *const k_end =
+                      filter(cell_xf.data(),
+                             cell_yf.data(),
+                             cell_zf.data(),
+                             runs,
+                             n_runs,
+                             cell_xf[k_i],
+                             cell_yf[k_i],
+                             cell_zf[k_i],
+                             r2_f,
+                             candidate_k.data());
+                    for (const std::uint32_t *q = candidate_k.data();
+                         q != k_end;
+                         ++q)
+                      {
+                        const std::uint32_t k = *q;
+                        const double ex = xi - cell_x[k], ey = yi - cell_y[k],
+                                     ez = zi - cell_z[k];
+                        if (ex * ex + ey * ey + ez * ez >= cut2)
+                          continue;
+                        const std::size_t j = cell_sphere[k];
+                        if ((!i_owned && !owned(j)) || j == i + nf ||
+                            j + nf == i ||              // chain neighbours
+                            (i >= row_e && j >= row_e)) // a later block's
+                          continue;
+                        found.emplace_back(std::min<std::size_t>(i, j),
+                                           std::max<std::size_t>(i, j));
+                      }
                   }
               }
-            ++n_searched;
-            for (unsigned int r = 0; r < n_runs; ++r)
-              n_candidates += runs[r].k1 - runs[r].k0;
-            const std::uint32_t *const k_end =
-              filter(cell_xf.data(),
-                     cell_yf.data(),
-                     cell_zf.data(),
-                     runs,
-                     n_runs,
-                     static_cast<float>(xi - xmin),
-                     static_cast<float>(yi),
-                     static_cast<float>(zi),
-                     r2_f,
-                     candidate_k.data());
-            for (const std::uint32_t *q = candidate_k.data(); q != k_end; ++q)
-              {
-                const std::uint32_t k = *q;
-                const double ex = xi - cell_x[k], ey = yi - cell_y[k],
-                             ez = zi - cell_z[k];
-                if (ex * ex + ey * ey + ez * ez >= cut2)
-                  continue;
-                const std::size_t j = cell_sphere[k];
-                if ((k < k_b1 && j <= i) || (!i_owned && !owned(j)) ||
-                    j == i + nf || j + nf == i || // chain neighbours
-                    (i >= row_e && j >= row_e))   // a later block's
-                  continue;
-                found.emplace_back(std::min<std::size_t>(i, j),
-                                   std::max<std::size_t>(i, j));
-              }
-          }
 
         // New CSR list, rows sorted by j; carry the tangential history of
         // pairs that stay listed.
