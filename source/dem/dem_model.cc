@@ -272,6 +272,7 @@ namespace YarnImpact
                      g_hi   = 0;
         std::size_t n_local = 0, own_b = 0, own_e = 0, act_b = 0, act_e = 0;
         std::vector<unsigned int> ghost_lo, ghost_hi;
+        std::vector<unsigned int> slab_starts; // of every rank, and n_st
         unsigned long n_ghost_growths = 0;
 
         // --- state (local spheres, cross-section-major)
@@ -307,7 +308,7 @@ namespace YarnImpact
         std::vector<double> cell_x, cell_y, cell_z;
         std::vector<float> cell_xf, cell_yf, cell_zf;
         std::vector<std::uint32_t> candidate_k;
-        std::vector<std::uint8_t> bin_partners;
+        std::vector<std::uint8_t> cell_partners;
 
         // --- energy accounting (local)
         // ----------------------------------------
@@ -365,11 +366,12 @@ namespace YarnImpact
         accumulate_criterion(ListBlock &B, const std::size_t i);
         bool
         lists_valid(ListBlock &B);
+        /** First cross-section of the slab of rank @p q (of the modelled
+         * ones; slab_begin(n_ranks) = n_st). */
         unsigned int
         slab_begin(const unsigned int q) const
         {
-          return static_cast<unsigned int>(static_cast<unsigned long>(n_st) *
-                                           q / n_ranks);
+          return slab_starts[q];
         }
         void
         set_active_range();
@@ -516,21 +518,38 @@ namespace YarnImpact
             total_mass += sphere_mass * fw[f] * sw[s];
         total_mass *= factor;
 
-        // Slabs of stations.
+        // Slabs of stations: even, but with x symmetry the first one (with
+        // the impact point) is `Impact slab share` of an even one.
         const unsigned int G = prm.ghost_stations;
-        st_begin = static_cast<unsigned int>(static_cast<unsigned long>(n_st) *
-                                             rank / n_ranks);
-        st_end   = static_cast<unsigned int>(static_cast<unsigned long>(n_st) *
-                                           (rank + 1) / n_ranks);
-        const bool enough =
-          n_ranks == 1 || static_cast<unsigned long>(n_st) / n_ranks >= G + 1;
+        slab_starts.assign(n_ranks + 1, n_st);
+        slab_starts[0] = 0;
+        if (n_ranks > 1)
+          {
+            const double share = (x_sym ? prm.impact_slab_share : 1.);
+            const auto first =
+              static_cast<unsigned int>(std::lround(share * n_st / n_ranks));
+            for (unsigned int q = 1; q < n_ranks; ++q)
+              slab_starts[q] =
+                std::min(n_st,
+                         first + static_cast<unsigned int>(
+                                   static_cast<unsigned long>(
+                                     n_st - std::min(n_st, first)) *
+                                   (q - 1) / (n_ranks - 1)));
+          }
+        st_begin    = slab_begin(rank);
+        st_end      = slab_begin(rank + 1);
+        bool enough = true;
+        for (unsigned int q = 0; q < n_ranks && n_ranks > 1; ++q)
+          enough = enough && slab_begin(q + 1) >= slab_begin(q) + G + 1;
         require(enough,
                 "DEM/Ghost stations",
                 "= " + std::to_string(G) + " is too large for " +
                   std::to_string(n_st) + " cross-sections on " +
                   std::to_string(n_ranks) +
                   " MPI ranks (each rank needs more cross-sections than "
-                  "ghost layers): use fewer ranks or fewer ghost stations");
+                  "ghost layers; with x symmetry the first rank has "
+                  "DEM/Impact slab share of an even slab): use fewer ranks, "
+                  "fewer ghost stations or a larger impact slab share");
         lo      = (rank == 0 ? 0 : slab_begin(rank - 1));
         hi      = (rank + 1 == n_ranks ? n_st : slab_begin(rank + 2));
         n_local = static_cast<std::size_t>(hi - lo) * nf;
@@ -1189,15 +1208,17 @@ namespace YarnImpact
         const float r2_f        = filter_radius2(cutoff, magnitude);
         const NearInRuns filter = near_in_runs_for_this_cpu();
         candidate_k.resize(n_cand);
-        // A sphere is searched only if its bin or the next holds a sphere
-        // it can be listed with: an owned one if it is a ghost, one of the
-        // rows if it is in the halo, an owned one of the rows if both (the
-        // halo can be large after fibres were cut and slid).
+        // A sphere searches only the cells that hold a sphere it can be
+        // listed with: an owned one if it is a ghost, one of the rows if it
+        // is in the halo, an owned one of the rows if both (after fibres
+        // were cut and slid, the ghost layers and halos are whole slabs, but
+        // few of their spheres are near an owned one or one of the rows).
         const std::size_t row_e = B.e;
-        bin_partners.assign(n_bins + 1, 0);
+        cell_partners.assign(n_cells, 0);
         for (std::size_t i = sb; i < se; ++i)
-          bin_partners[bin_of(i)] |= (owned(i) ? 1 : 0) | (i < row_e ? 2 : 0) |
-                                     (owned(i) && i < row_e ? 4 : 0);
+          cell_partners[cell_of[i - sb]] |= (owned(i) ? 1 : 0) |
+                                            (i < row_e ? 2 : 0) |
+                                            (owned(i) && i < row_e ? 4 : 0);
         // The spheres are searched in cell order: each pair is tested once.
         // In its own bin a sphere looks only forward in that order (the
         // rest of its cell, the next cell of its row, the next row's three
@@ -1221,12 +1242,24 @@ namespace YarnImpact
                 const std::uint32_t k_row_end =
                   cell_start[cell_off[b] + a * nz + std::min(cz + 1, nz - 1) +
                              1];
-                CandidateRun next_row = {0, 0};
+                const auto flags = [&](const std::uint32_t c0,
+                                       const std::uint32_t c1) {
+                  std::uint8_t f = 0;
+                  for (std::uint32_t c = c0; c <= c1; ++c)
+                    f |= cell_partners[c];
+                  return f;
+                };
+                const std::uint8_t row_flags =
+                  flags(cell, cell_off[b] + a * nz + std::min(cz + 1, nz - 1));
+                CandidateRun next_row       = {0, 0};
+                std::uint8_t next_row_flags = 0;
                 if (a + 1 < bin_ny[b])
                   {
                     const std::uint32_t row = cell_off[b] + (a + 1) * nz;
-                    next_row = {cell_start[row + (cz > 0 ? cz - 1 : 0)],
-                                cell_start[row + std::min(cz + 1, nz - 1) + 1]};
+                    const std::uint32_t c0  = row + (cz > 0 ? cz - 1 : 0),
+                                        c1  = row + std::min(cz + 1, nz - 1);
+                    next_row       = {cell_start[c0], cell_start[c1 + 1]};
+                    next_row_flags = flags(c0, c1);
                   }
                 for (std::uint32_t k_i = k_c0; k_i < k_c1; ++k_i)
                   {
@@ -1234,15 +1267,20 @@ namespace YarnImpact
                     const bool i_owned  = owned(i);
                     const std::uint8_t need =
                       (i_owned ? (i < row_e ? 0 : 2) : (i < row_e ? 1 : 4));
-                    if (need != 0 &&
-                        !((bin_partners[b] | bin_partners[b + 1]) & need))
-                      continue;
+                    // A run without a sphere i can be listed with is left
+                    // out (need = 0: an owned sphere of the rows can be
+                    // listed with any; a cell of ghosts of the halo has no
+                    // flag).
+                    const auto wanted = [need](const std::uint8_t f) {
+                      return need == 0 || (f & need) != 0;
+                    };
                     const double xi = cell_x[k_i], yi = cell_y[k_i],
                                  zi = cell_z[k_i];
                     CandidateRun runs[5];
                     unsigned int n_runs = 0;
-                    runs[n_runs++]      = {k_i + 1, k_row_end};
-                    if (next_row.k1 > next_row.k0)
+                    if (wanted(row_flags))
+                      runs[n_runs++] = {k_i + 1, k_row_end};
+                    if (next_row.k1 > next_row.k0 && wanted(next_row_flags))
                       runs[n_runs++] = next_row;
                     // Next bin: the rows of the 3 x 3 block.
                     const std::uint32_t bb = b + 1;
@@ -1261,10 +1299,13 @@ namespace YarnImpact
                                ++r)
                             {
                               const std::uint32_t row = cell_off[bb] + r * nz_;
-                              runs[n_runs++]          = {cell_start[row + c0],
-                                                         cell_start[row + c1 + 1]};
+                              if (wanted(flags(row + c0, row + c1)))
+                                runs[n_runs++] = {cell_start[row + c0],
+                                                  cell_start[row + c1 + 1]};
                             }
                       }
+                    if (n_runs == 0)
+                      continue;
                     ++n_searched;
                     for (unsigned int r = 0; r < n_runs; ++r)
                       n_candidates += runs[r].k1 - runs[r].k0;

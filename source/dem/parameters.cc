@@ -108,6 +108,18 @@ namespace YarnImpact
                         "own, so that the fast spheres under the projectile "
                         "rebuild only the lists near the impact. The results "
                         "do not depend on it, only the speed [-].");
+      prm.declare_entry("Impact slab share",
+                        "0.92",
+                        Patterns::Double(),
+                        "With half or quarter symmetry on several MPI ranks: "
+                        "the slab of the first rank, which holds the impact "
+                        "point (the densest contacts and the most frequent "
+                        "list rebuilds), as a fraction of an even share of "
+                        "the cross-sections; the other ranks share the rest "
+                        "evenly. 1 gives even slabs. Ignored with Symmetry = "
+                        "none (the impact point is then in the middle of the "
+                        "yarn) and on one rank. The results do not depend on "
+                        "it, only the speed [-].");
       prm.leave_subsection();
     }
 
@@ -157,9 +169,13 @@ namespace YarnImpact
       skin         = get_positive_double(prm, "DEM", "Skin");
       const long c = prm.get_integer("Coordination number");
       require(c >= 0, "DEM/Coordination number", "must not be negative");
-      coordination   = static_cast<unsigned int>(c);
-      ghost_stations = get_positive_integer(prm, "DEM", "Ghost stations");
-      list_block     = get_positive_integer(prm, "DEM", "List block");
+      coordination      = static_cast<unsigned int>(c);
+      ghost_stations    = get_positive_integer(prm, "DEM", "Ghost stations");
+      list_block        = get_positive_integer(prm, "DEM", "List block");
+      impact_slab_share = prm.get_double("Impact slab share");
+      require(impact_slab_share >= 0.25 && impact_slab_share <= 2.,
+              "DEM/Impact slab share",
+              "must be in [0.25, 2]");
       prm.leave_subsection();
     }
   } // namespace DEM

@@ -66,5 +66,7 @@ expect bad_damping "DEM/Damping ratio" \
   "subsection DEM" "set Damping ratio = 1.5" "end"
 expect negative_friction "DEM/Friction coefficient" \
   "subsection DEM" "set Friction coefficient = -0.1" "end"
+expect bad_slab_share "DEM/Impact slab share" \
+  "subsection DEM" "set Impact slab share = 0" "end"
 
 exit $failures

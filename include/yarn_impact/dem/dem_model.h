@@ -67,6 +67,12 @@ namespace YarnImpact
       /** Cross-sections per neighbour-list block: each block is rebuilt on
        * its own when its criterion fails (doc/dem.md section 4) [-]. */
       unsigned int list_block = 32;
+      /** With half or quarter symmetry and several MPI ranks: the first
+       * rank's slab (which holds the impact point, where contacts are
+       * densest and lists are rebuilt most often) as a fraction of an even
+       * share of the cross-sections; the other ranks share the rest
+       * evenly. Only the speed depends on it [-]. */
+      double impact_slab_share = 0.92;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
