@@ -118,8 +118,9 @@ namespace YarnImpact
                         "the cross-sections; the other ranks share the rest "
                         "evenly. 1 gives even slabs. Ignored with Symmetry = "
                         "none (the impact point is then in the middle of the "
-                        "yarn) and on one rank. The results do not depend on "
-                        "it, only the speed [-].");
+                        "yarn) and on one rank. The motion does not depend "
+                        "on it, only the speed (and the last digits of the "
+                        "energy sums, which are added per rank) [-].");
       prm.leave_subsection();
     }
 
