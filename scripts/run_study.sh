@@ -1,6 +1,6 @@
 #!/bin/bash
-# The whole study of doc/validation.md in one command (about 22 minutes on
-# the 2-core machine, 11 of them the default case): the default case (FE
+# The whole study of doc/validation.md in one command (about 21 minutes on
+# the 2-core machine, 10 of them the default case): the default case (FE
 # and DEM side by side, figures), the FE alone with the hyperelastic law,
 # the linear law, the density from the fibres and a refined section, the FE
 # resolution study, and the DEM contact-stiffness and friction sensitivity
