@@ -526,20 +526,18 @@ namespace YarnImpact
         if (n_ranks > 1)
           {
             const double share = (x_sym ? prm.impact_slab_share : 1.);
-            const auto first =
-              static_cast<unsigned int>(std::lround(share * n_st / n_ranks));
+            const unsigned int first =
+              std::min<unsigned int>(n_st, std::lround(share * n_st / n_ranks));
             for (unsigned int q = 1; q < n_ranks; ++q)
               slab_starts[q] =
-                std::min(n_st,
-                         first + static_cast<unsigned int>(
-                                   static_cast<unsigned long>(
-                                     n_st - std::min(n_st, first)) *
-                                   (q - 1) / (n_ranks - 1)));
+                first + static_cast<unsigned int>(
+                          static_cast<unsigned long>(n_st - first) * (q - 1) /
+                          (n_ranks - 1));
           }
         st_begin    = slab_begin(rank);
         st_end      = slab_begin(rank + 1);
         bool enough = true;
-        for (unsigned int q = 0; q < n_ranks && n_ranks > 1; ++q)
+        for (unsigned int q = 0; n_ranks > 1 && q < n_ranks; ++q)
           enough = enough && slab_begin(q + 1) >= slab_begin(q) + G + 1;
         require(enough,
                 "DEM/Ghost stations",
@@ -1219,6 +1217,13 @@ namespace YarnImpact
           cell_partners[cell_of[i - sb]] |= (owned(i) ? 1 : 0) |
                                             (i < row_e ? 2 : 0) |
                                             (owned(i) && i < row_e ? 4 : 0);
+        // The flags of the cells c0 to c1 (of one row).
+        const auto flags = [&](const std::uint32_t c0, const std::uint32_t c1) {
+          std::uint8_t f = 0;
+          for (std::uint32_t c = c0; c <= c1; ++c)
+            f |= cell_partners[c];
+          return f;
+        };
         // The spheres are searched in cell order: each pair is tested once.
         // In its own bin a sphere looks only forward in that order (the
         // rest of its cell, the next cell of its row, the next row's three
@@ -1237,22 +1242,14 @@ namespace YarnImpact
                                     k_c1 = cell_start[cell + 1];
                 if (k_c0 == k_c1)
                   continue;
-                // Same bin: the end of the run in this row, and the run of
-                // the next row.
-                const std::uint32_t k_row_end =
-                  cell_start[cell_off[b] + a * nz + std::min(cz + 1, nz - 1) +
-                             1];
-                const auto flags = [&](const std::uint32_t c0,
-                                       const std::uint32_t c1) {
-                  std::uint8_t f = 0;
-                  for (std::uint32_t c = c0; c <= c1; ++c)
-                    f |= cell_partners[c];
-                  return f;
-                };
-                const std::uint8_t row_flags =
-                  flags(cell, cell_off[b] + a * nz + std::min(cz + 1, nz - 1));
-                CandidateRun next_row       = {0, 0};
-                std::uint8_t next_row_flags = 0;
+                // Same bin: the run from this cell to the next one of the
+                // row, and the run of the next row.
+                const std::uint32_t row_last =
+                  cell_off[b] + a * nz + std::min(cz + 1, nz - 1);
+                const std::uint32_t k_row_end = cell_start[row_last + 1];
+                const std::uint8_t row_flags  = flags(cell, row_last);
+                CandidateRun next_row         = {0, 0};
+                std::uint8_t next_row_flags   = 0;
                 if (a + 1 < bin_ny[b])
                   {
                     const std::uint32_t row = cell_off[b] + (a + 1) * nz;
