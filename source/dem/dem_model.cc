@@ -98,6 +98,8 @@ namespace YarnImpact
         std::vector<std::uint32_t> bin_count;
         std::vector<double> D_prev, D_sum;
         double r2_max = 0.;
+        /** The criterion's bound of this step [m]. */
+        double bound = 0.;
 
         bool
         active() const
@@ -186,9 +188,24 @@ namespace YarnImpact
         std::string
         remarks() const override
         {
-          if (n_ranks == 1)
-            return {};
           std::ostringstream s;
+          if (prm.check_lists)
+            {
+              // Collective: the contacts of every rank, a pair across a
+              // rank boundary half on each.
+              const double n[2] = {
+                dealii::Utilities::MPI::sum(checked_contacts, comm),
+                dealii::Utilities::MPI::sum(checked_mirror_contacts, comm)};
+              s << "neighbour lists checked at " << step_count
+                << " force evaluations: " << std::llround(n[0])
+                << " contacts and " << std::llround(n[1])
+                << " mirror-image contacts (summed over the evaluations), "
+                   "all listed";
+            }
+          if (n_ranks == 1)
+            return s.str();
+          if (prm.check_lists)
+            s << "\n  ";
           s << "MPI ghost layers grew " << n_ghost_growths
             << " times; cross-sections below/above each slab at the end:";
           for (unsigned int q = 0; q < n_ranks; ++q)
@@ -298,6 +315,10 @@ namespace YarnImpact
         unsigned long n_rebuilds   = 0;          // block rebuilds
         unsigned long rebuilt_rows = 0; // sum of the rebuilt rows [spheres]
         unsigned long n_searched = 0, n_candidates = 0; // of the rebuilds
+        // Contacts seen by the list check (pair-steps, weighted like the
+        // energies) and its scratch.
+        double checked_contacts = 0., checked_mirror_contacts = 0.;
+        std::vector<std::uint32_t> check_order;
 
         // Scratch of the rebuild (kept to avoid reallocation).
         std::vector<std::uint32_t> bin_start, bin_sphere, cell_off, cell_start,
@@ -364,8 +385,11 @@ namespace YarnImpact
         absorb(ListBlock &B, ListBlock &C);
         void
         accumulate_criterion(ListBlock &B, const std::size_t i);
-        bool
-        lists_valid(ListBlock &B);
+        /** The bound on the relative motion of the pairs of block @p B
+         * since its build [m]; the lists hold while it is below the skin.
+         * Moves the block's reference displacements on. */
+        double
+        list_bound(ListBlock &B);
         /** First cross-section of the slab of rank @p q (of the modelled
          * ones; slab_begin(n_ranks) = n_st). */
         unsigned int
@@ -385,6 +409,21 @@ namespace YarnImpact
         update_lists(const bool check_criterion);
         void
         rebuild(ListBlock &B);
+        /** With `DEM/Check lists`: throw if a pair of spheres closer than d,
+         * or a sphere and a mirror image closer than d, with an owned
+         * sphere, is not in the lists (found without them). */
+        void
+        check_lists();
+        /** The sphere pairs of check_lists(); @p missing(i, j, false)
+         * reports an unlisted one. */
+        template <typename Report>
+        void
+        check_pairs(const Report &missing);
+        /** The mirror-image pairs of check_lists(); @p missing(i, j, true)
+         * reports an unlisted one. */
+        template <typename Report>
+        void
+        check_mirror_pairs(const Report &missing);
         double
         truss_strain(const std::size_t i, double *length = nullptr) const;
         double
@@ -952,8 +991,8 @@ namespace YarnImpact
       }
 
 
-      bool
-      Model::lists_valid(ListBlock &B)
+      double
+      Model::list_bound(ListBlock &B)
       {
         // Criterion (doc/dem.md, "Neighbour lists"): with D_b the reference
         // displacement of build bin b, r = max |Delta_i - D_b(i)| and
@@ -992,7 +1031,7 @@ namespace YarnImpact
               B.D_prev[3 * b + c] = B.D_sum[3 * b + c] / B.bin_count[b];
         std::fill(B.D_sum.begin(), B.D_sum.end(), 0.);
         B.r2_max = 0.;
-        return bound < prm.skin;
+        return bound;
       }
 
 
@@ -1048,13 +1087,27 @@ namespace YarnImpact
         // The criterion is evaluated for every block, also a stale one: it
         // moves the reference displacements on.
         last_r = last_g = 0.;
+        int must        = 0;
         for (ListBlock &B : blocks)
           if (B.active())
             {
-              const bool valid = !check_criterion || lists_valid(B);
-              if (!valid || B.stale)
-                rebuild(B);
+              B.bound = (check_criterion ? list_bound(B) : 0.);
+              must |= (B.stale || !(B.bound < prm.skin));
             }
+        // A rank's rebuild stalls the others (every step ends in a
+        // collective): when any rank must rebuild, the others rebuild their
+        // blocks that would fail soon in the same step.
+        double joint = infinity;
+        if (n_ranks > 1 && check_criterion && prm.joint_rebuild_fraction < 1.)
+          {
+            MPI_Allreduce(MPI_IN_PLACE, &must, 1, MPI_INT, MPI_LOR, comm);
+            if (must)
+              joint = prm.joint_rebuild_fraction * prm.skin;
+          }
+        for (ListBlock &B : blocks)
+          if (B.active() &&
+              (B.stale || !(B.bound < prm.skin) || B.bound >= joint))
+            rebuild(B);
       }
 
 
@@ -1507,6 +1560,175 @@ namespace YarnImpact
       }
 
 
+      template <typename Report>
+      void
+      Model::check_pairs(const Report &missing)
+      {
+        const double d2 = d * d;
+        // The active spheres, sorted along x: every pair closer than d is
+        // within d in x.
+        check_order.resize(act_e - act_b);
+        for (std::size_t k = 0; k < check_order.size(); ++k)
+          check_order[k] = static_cast<std::uint32_t>(act_b + k);
+        std::sort(check_order.begin(),
+                  check_order.end(),
+                  [&](const std::uint32_t a, const std::uint32_t b) {
+                    return pos[3 * a] < pos[3 * b];
+                  });
+        for (std::size_t a = 0; a < check_order.size(); ++a)
+          for (std::size_t b = a + 1; b < check_order.size(); ++b)
+            {
+              const std::size_t p = check_order[a], q = check_order[b];
+              const double ex = pos[3 * q] - pos[3 * p];
+              if (ex >= d)
+                break;
+              const std::size_t i = std::min(p, q), j = std::max(p, q);
+              if ((!owned(i) && !owned(j)) || j == i + nf)
+                continue;
+              const double ey = pos[3 * j + 1] - pos[3 * i + 1],
+                           ez = pos[3 * j + 2] - pos[3 * i + 2];
+              if (ex * ex + ey * ey + ez * ez >= d2)
+                continue;
+              checked_contacts += own_factor(i, j);
+              // Row i of the block whose rows hold i, sorted by j.
+              const ListBlock &B = block_of(i);
+              if (i < B.b || i >= B.e)
+                {
+                  missing(i, j, false);
+                  continue;
+                }
+              const Pair *row0 = B.pairs.data() + B.pstart[i - B.b],
+                         *row1 = B.pairs.data() + B.pstart[i - B.b + 1];
+              const Pair *hit =
+                std::lower_bound(row0,
+                                 row1,
+                                 j,
+                                 [](const Pair &e, const std::size_t k) {
+                                   return e.j < k;
+                                 });
+              if (hit == row1 || hit->j != j)
+                missing(i, j, false);
+            }
+      }
+
+
+      template <typename Report>
+      void
+      Model::check_mirror_pairs(const Report &missing)
+      {
+        // Sphere i with the image of j (or of itself) in x = 0 (axes 1),
+        // z = 0 (2) or both (3); both spheres off the mirroring planes.
+        const double d2  = d * d;
+        const auto check = [&](const std::size_t p,
+                               const std::size_t q,
+                               const std::uint8_t axes) {
+          const std::size_t i = std::min(p, q), j = std::max(p, q);
+          if ((!owned(i) && !owned(j)) ||
+              ((axes & 1) && (station_of(i) == 0 || station_of(j) == 0)) ||
+              ((axes & 2) && (zmask[i % nf] == 0. || zmask[j % nf] == 0.)))
+            return;
+          const double sx = (axes & 1) ? -1. : 1., sz = (axes & 2) ? -1. : 1.;
+          const double ex = pos[3 * i] - sx * pos[3 * j],
+                       ey = pos[3 * i + 1] - pos[3 * j + 1],
+                       ez = pos[3 * i + 2] - sz * pos[3 * j + 2];
+          if (ex * ex + ey * ey + ez * ez >= d2)
+            return;
+          checked_mirror_contacts += own_factor(i, j);
+          const MirrorPair key = {static_cast<std::uint32_t>(i),
+                                  static_cast<std::uint32_t>(j),
+                                  0.f,
+                                  axes,
+                                  false};
+          bool listed          = false;
+          for (const ListBlock &B : blocks)
+            listed = listed || std::binary_search(B.mpairs.begin(),
+                                                  B.mpairs.end(),
+                                                  key,
+                                                  mirror_less);
+          if (!listed)
+            missing(i, j, true);
+        };
+        std::vector<std::uint32_t> near;
+        // In z = 0: spheres within d of that plane, swept along x.
+        if (z_sym)
+          {
+            for (std::size_t i = act_b; i < act_e; ++i)
+              if (pos[3 * i + 2] < d)
+                near.push_back(static_cast<std::uint32_t>(i));
+            std::sort(near.begin(),
+                      near.end(),
+                      [&](const std::uint32_t a, const std::uint32_t b) {
+                        return pos[3 * a] < pos[3 * b];
+                      });
+            for (std::size_t a = 0; a < near.size(); ++a)
+              for (std::size_t b = a;
+                   b < near.size() && pos[3 * near[b]] - pos[3 * near[a]] < d;
+                   ++b)
+                check(near[a], near[b], 2);
+          }
+        // In x = 0, and in both planes: spheres within d of x = 0, every
+        // pair (an image distance below d needs x_i + x_j < d).
+        if (x_sym)
+          {
+            near.clear();
+            for (std::size_t i = act_b; i < act_e; ++i)
+              if (pos[3 * i] < d)
+                near.push_back(static_cast<std::uint32_t>(i));
+            for (std::size_t a = 0; a < near.size(); ++a)
+              for (std::size_t b = a; b < near.size(); ++b)
+                {
+                  check(near[a], near[b], 1);
+                  if (z_sym)
+                    check(near[a], near[b], 3);
+                }
+          }
+      }
+
+
+      void
+      Model::check_lists()
+      {
+        const auto where = [&](const std::size_t i) {
+          std::ostringstream s;
+          s << "cross-section " << station_of(i) << ", fibre " << i % nf;
+          return s.str();
+        };
+        // The first missing pair of this rank; the error is collective.
+        std::string first_missing;
+        const auto missing =
+          [&](const std::size_t i, const std::size_t j, const bool mirror) {
+            if (!first_missing.empty())
+              return;
+            std::ostringstream s;
+            s << "[dem] list check at force evaluation " << step_count
+              << " on rank " << rank << ": the sphere at " << where(i);
+            if (!mirror)
+              s << " and the sphere at " << where(j);
+            else if (i != j)
+              s << " and the mirror image of the sphere at " << where(j);
+            else
+              s << " and its own mirror image";
+            s << " are closer than the fibre diameter but not in the "
+              << (mirror ? "mirror-pair" : "neighbour") << " lists";
+            first_missing = s.str();
+          };
+        check_pairs(missing);
+        check_mirror_pairs(missing);
+        if (n_ranks > 1)
+          {
+            const unsigned int first =
+              dealii::Utilities::MPI::min(first_missing.empty() ? n_ranks
+                                                                : rank,
+                                          comm);
+            if (first < n_ranks)
+              first_missing =
+                dealii::Utilities::MPI::broadcast(comm, first_missing, first);
+          }
+        if (!first_missing.empty())
+          throw RunError(first_missing);
+      }
+
+
       double
       Model::compute_forces(const Projectile &projectile, const double dt)
       {
@@ -1529,6 +1751,8 @@ namespace YarnImpact
             exchange_ghosts(vel);
           }
         update_lists(true);
+        if (prm.check_lists)
+          check_lists();
 
         double *__restrict x = pos.data();
         double *__restrict v = vel.data();

@@ -121,6 +121,28 @@ namespace YarnImpact
                         "yarn) and on one rank. The motion does not depend "
                         "on it, only the speed (and the last digits of the "
                         "energy sums, which are added per rank) [-].");
+      prm.declare_entry("Joint rebuild fraction",
+                        "0.6",
+                        Patterns::Double(),
+                        "On several MPI ranks: when some rank must rebuild a "
+                        "neighbour-list block, every rank also rebuilds, in "
+                        "the same step, its blocks whose rebuild criterion "
+                        "has used up this fraction of the skin. Such a block "
+                        "would fail within a few steps anyway, and each "
+                        "rank's rebuild would otherwise stall the others "
+                        "(after fibres break, blocks fail every few steps). "
+                        "1 rebuilds only the failing blocks. The results do "
+                        "not depend on it, only the speed [-].");
+      prm.declare_entry("Check lists",
+                        "false",
+                        Patterns::Bool(),
+                        "Verify at every force evaluation, by a sweep over "
+                        "the spheres sorted along the yarn that does not use "
+                        "the neighbour lists, that every pair of spheres "
+                        "closer than the fibre diameter, and every such "
+                        "pair with a mirror image, is listed; a missing pair "
+                        "stops the run with an error. For tests: it costs "
+                        "about a list rebuild per step.");
       prm.leave_subsection();
     }
 
@@ -177,6 +199,11 @@ namespace YarnImpact
       require(impact_slab_share >= 0.25 && impact_slab_share <= 2.,
               "DEM/Impact slab share",
               "must be in [0.25, 2]");
+      joint_rebuild_fraction = prm.get_double("Joint rebuild fraction");
+      require(joint_rebuild_fraction > 0. && joint_rebuild_fraction <= 1.,
+              "DEM/Joint rebuild fraction",
+              "must be in (0, 1]");
+      check_lists = prm.get_bool("Check lists");
       prm.leave_subsection();
     }
   } // namespace DEM

@@ -68,5 +68,7 @@ expect negative_friction "DEM/Friction coefficient" \
   "subsection DEM" "set Friction coefficient = -0.1" "end"
 expect bad_slab_share "DEM/Impact slab share" \
   "subsection DEM" "set Impact slab share = 0" "end"
+expect bad_joint_rebuild "DEM/Joint rebuild fraction" \
+  "subsection DEM" "set Joint rebuild fraction = 1.5" "end"
 
 exit $failures

@@ -73,6 +73,18 @@ namespace YarnImpact
        * share of the cross-sections; the other ranks share the rest
        * evenly. Only the speed depends on it [-]. */
       double impact_slab_share = 0.92;
+      /** On several MPI ranks: when a rank must rebuild a list block, every
+       * rank also rebuilds its blocks whose criterion has used this
+       * fraction of the skin, in the same step (they would fail within a
+       * few steps, each rank on its own, while the others wait); 1
+       * rebuilds only failing blocks. Only the speed depends on it [-]. */
+      double joint_rebuild_fraction = 0.6;
+      /** Verify after every list update, by a sweep over the spheres sorted
+       * along x that knows nothing of the lists, that every pair closer
+       * than the diameter (and every such mirror image) is listed; a
+       * missing pair stops the run. For tests: it costs about a rebuild
+       * per step. */
+      bool check_lists = false;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
