@@ -1086,27 +1086,32 @@ namespace YarnImpact
       {
         // The criterion is evaluated for every block, also a stale one: it
         // moves the reference displacements on.
-        last_r = last_g = 0.;
-        int must        = 0;
+        last_r = last_g  = 0.;
+        int must_rebuild = 0;
         for (ListBlock &B : blocks)
           if (B.active())
             {
               B.bound = (check_criterion ? list_bound(B) : 0.);
-              must |= (B.stale || !(B.bound < prm.skin));
+              must_rebuild |= (B.stale || !(B.bound < prm.skin));
             }
         // A rank's rebuild stalls the others (every step ends in a
         // collective): when any rank must rebuild, the others rebuild their
         // blocks that would fail soon in the same step.
-        double joint = infinity;
+        double joint_bound = infinity;
         if (n_ranks > 1 && check_criterion && prm.joint_rebuild_fraction < 1.)
           {
-            MPI_Allreduce(MPI_IN_PLACE, &must, 1, MPI_INT, MPI_LOR, comm);
-            if (must)
-              joint = prm.joint_rebuild_fraction * prm.skin;
+            MPI_Allreduce(MPI_IN_PLACE,
+                          &must_rebuild,
+                          1,
+                          MPI_INT,
+                          MPI_LOR,
+                          comm);
+            if (must_rebuild)
+              joint_bound = prm.joint_rebuild_fraction * prm.skin;
           }
         for (ListBlock &B : blocks)
           if (B.active() &&
-              (B.stale || !(B.bound < prm.skin) || B.bound >= joint))
+              (B.stale || !(B.bound < prm.skin) || B.bound >= joint_bound))
             rebuild(B);
       }
 
