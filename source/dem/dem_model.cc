@@ -316,7 +316,7 @@ namespace YarnImpact
         unsigned long rebuilt_rows = 0; // sum of the rebuilt rows [spheres]
         unsigned long n_searched = 0, n_candidates = 0; // of the rebuilds
         // Contacts seen by the list check (pair-steps, weighted like the
-        // energies) and its scratch.
+        // energies) and its scratch (the spheres it sweeps).
         double checked_contacts = 0., checked_mirror_contacts = 0.;
         std::vector<std::uint32_t> check_order;
 
@@ -414,6 +414,12 @@ namespace YarnImpact
          * sphere, is not in the lists (found without them). */
         void
         check_lists();
+        /** Sort the spheres in check_order along x and call @p f(p, q) for
+         * every pair of them (and every sphere with itself if @p with_self)
+         * less than d apart in x. */
+        template <typename PairFunction>
+        void
+        sweep_along_x(const bool with_self, const PairFunction &f);
         /** The sphere pairs of check_lists(); @p missing(i, j, false)
          * reports an unlisted one. */
         template <typename Report>
@@ -1565,55 +1571,62 @@ namespace YarnImpact
       }
 
 
-      template <typename Report>
+      template <typename PairFunction>
       void
-      Model::check_pairs(const Report &missing)
+      Model::sweep_along_x(const bool with_self, const PairFunction &f)
       {
-        const double d2 = d * d;
-        // The active spheres, sorted along x: every pair closer than d is
-        // within d in x.
-        check_order.resize(act_e - act_b);
-        for (std::size_t k = 0; k < check_order.size(); ++k)
-          check_order[k] = static_cast<std::uint32_t>(act_b + k);
         std::sort(check_order.begin(),
                   check_order.end(),
                   [&](const std::uint32_t a, const std::uint32_t b) {
                     return pos[3 * a] < pos[3 * b];
                   });
         for (std::size_t a = 0; a < check_order.size(); ++a)
-          for (std::size_t b = a + 1; b < check_order.size(); ++b)
+          for (std::size_t b = (with_self ? a : a + 1);
+               b < check_order.size() &&
+               pos[3 * check_order[b]] - pos[3 * check_order[a]] < d;
+               ++b)
+            f(check_order[a], check_order[b]);
+      }
+
+
+      template <typename Report>
+      void
+      Model::check_pairs(const Report &missing)
+      {
+        // Every pair closer than d is within d along x.
+        const double d2 = d * d;
+        check_order.clear();
+        for (std::size_t i = act_b; i < act_e; ++i)
+          check_order.push_back(static_cast<std::uint32_t>(i));
+        sweep_along_x(false, [&](const std::size_t p, const std::size_t q) {
+          const std::size_t i = std::min(p, q), j = std::max(p, q);
+          if ((!owned(i) && !owned(j)) || j == i + nf)
+            return;
+          const double ex = pos[3 * j] - pos[3 * i],
+                       ey = pos[3 * j + 1] - pos[3 * i + 1],
+                       ez = pos[3 * j + 2] - pos[3 * i + 2];
+          if (ex * ex + ey * ey + ez * ez >= d2)
+            return;
+          checked_contacts += own_factor(i, j);
+          // Row i of the block whose rows hold i, sorted by j.
+          const ListBlock &B = block_of(i);
+          if (i < B.b || i >= B.e)
             {
-              const std::size_t p = check_order[a], q = check_order[b];
-              const double ex = pos[3 * q] - pos[3 * p];
-              if (ex >= d)
-                break;
-              const std::size_t i = std::min(p, q), j = std::max(p, q);
-              if ((!owned(i) && !owned(j)) || j == i + nf)
-                continue;
-              const double ey = pos[3 * j + 1] - pos[3 * i + 1],
-                           ez = pos[3 * j + 2] - pos[3 * i + 2];
-              if (ex * ex + ey * ey + ez * ez >= d2)
-                continue;
-              checked_contacts += own_factor(i, j);
-              // Row i of the block whose rows hold i, sorted by j.
-              const ListBlock &B = block_of(i);
-              if (i < B.b || i >= B.e)
-                {
-                  missing(i, j, false);
-                  continue;
-                }
-              const Pair *row0 = B.pairs.data() + B.pstart[i - B.b],
-                         *row1 = B.pairs.data() + B.pstart[i - B.b + 1];
-              const Pair *hit =
-                std::lower_bound(row0,
-                                 row1,
-                                 j,
-                                 [](const Pair &e, const std::size_t k) {
-                                   return e.j < k;
-                                 });
-              if (hit == row1 || hit->j != j)
-                missing(i, j, false);
+              missing(i, j, false);
+              return;
             }
+          const Pair *row0 = B.pairs.data() + B.pstart[i - B.b],
+                     *row1 = B.pairs.data() + B.pstart[i - B.b + 1];
+          const Pair *hit =
+            std::lower_bound(row0,
+                             row1,
+                             j,
+                             [](const Pair &e, const std::size_t k) {
+                               return e.j < k;
+                             });
+          if (hit == row1 || hit->j != j)
+            missing(i, j, false);
+        });
       }
 
 
@@ -1653,38 +1666,32 @@ namespace YarnImpact
           if (!listed)
             missing(i, j, true);
         };
-        std::vector<std::uint32_t> near;
-        // In z = 0: spheres within d of that plane, swept along x.
+        // In z = 0: spheres within d of that plane (an image distance
+        // below d needs z_i + z_j < d), swept along x.
         if (z_sym)
           {
+            check_order.clear();
             for (std::size_t i = act_b; i < act_e; ++i)
               if (pos[3 * i + 2] < d)
-                near.push_back(static_cast<std::uint32_t>(i));
-            std::sort(near.begin(),
-                      near.end(),
-                      [&](const std::uint32_t a, const std::uint32_t b) {
-                        return pos[3 * a] < pos[3 * b];
-                      });
-            for (std::size_t a = 0; a < near.size(); ++a)
-              for (std::size_t b = a;
-                   b < near.size() && pos[3 * near[b]] - pos[3 * near[a]] < d;
-                   ++b)
-                check(near[a], near[b], 2);
+                check_order.push_back(static_cast<std::uint32_t>(i));
+            sweep_along_x(true, [&](const std::size_t p, const std::size_t q) {
+              check(p, q, 2);
+            });
           }
         // In x = 0, and in both planes: spheres within d of x = 0, every
-        // pair (an image distance below d needs x_i + x_j < d).
+        // pair (x_i + x_j < d).
         if (x_sym)
           {
-            near.clear();
+            check_order.clear();
             for (std::size_t i = act_b; i < act_e; ++i)
               if (pos[3 * i] < d)
-                near.push_back(static_cast<std::uint32_t>(i));
-            for (std::size_t a = 0; a < near.size(); ++a)
-              for (std::size_t b = a; b < near.size(); ++b)
+                check_order.push_back(static_cast<std::uint32_t>(i));
+            for (std::size_t a = 0; a < check_order.size(); ++a)
+              for (std::size_t b = a; b < check_order.size(); ++b)
                 {
-                  check(near[a], near[b], 1);
+                  check(check_order[a], check_order[b], 1);
                   if (z_sym)
-                    check(near[a], near[b], 3);
+                    check(check_order[a], check_order[b], 3);
                 }
           }
       }
