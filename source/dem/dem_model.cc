@@ -189,6 +189,7 @@ namespace YarnImpact
         remarks() const override
         {
           std::ostringstream s;
+          const char *separator = "";
           if (prm.check_lists)
             {
               // Collective: the contacts of every rank, a pair across a
@@ -201,12 +202,22 @@ namespace YarnImpact
                 << " contacts and " << std::llround(n[1])
                 << " mirror-image contacts (summed over the evaluations), "
                    "all listed";
+              separator = "\n  ";
+            }
+          if (prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
+            {
+              // Collective: the block rebuilds of all ranks.
+              const unsigned long n =
+                dealii::Utilities::MPI::sum(n_rebuilds, comm);
+              s << separator
+                << "neighbour-list blocks rebuilt only for missed contacts: "
+                << n << " block rebuilds (all ranks) in " << step_count
+                << " force evaluations";
+              separator = "\n  ";
             }
           if (n_ranks == 1)
             return s.str();
-          if (prm.check_lists)
-            s << "\n  ";
-          s << "MPI ghost layers grew " << n_ghost_growths
+          s << separator << "MPI ghost layers grew " << n_ghost_growths
             << " times; cross-sections below/above each slab at the end:";
           for (unsigned int q = 0; q < n_ranks; ++q)
             s << " rank " << q << " " << slab_begin(q) - ghost_lo[q] << "/"
@@ -319,6 +330,7 @@ namespace YarnImpact
         // energies) and its scratch (the spheres it sweeps).
         double checked_contacts = 0., checked_mirror_contacts = 0.;
         std::vector<std::uint32_t> check_order;
+        std::vector<std::uint8_t> missed_in_block;
 
         // Scratch of the rebuild (kept to avoid reallocation).
         std::vector<std::uint32_t> bin_start, bin_sphere, cell_off, cell_start,
@@ -409,6 +421,11 @@ namespace YarnImpact
         update_lists(const bool check_criterion);
         void
         rebuild(ListBlock &B);
+        /** With `DEM/List rebuilds = missed contact`: rebuild the stale
+         * blocks and those that miss a pair closer than d (found without
+         * the lists, as check_lists() does), then verify. */
+        void
+        rebuild_on_missed_contacts();
         /** With `DEM/Check lists`: throw if a pair of spheres closer than d,
          * or a sphere and a mirror image closer than d, with an owned
          * sphere, is not in the lists (found without them). */
@@ -1100,6 +1117,12 @@ namespace YarnImpact
               B.bound = (check_criterion ? list_bound(B) : 0.);
               must_rebuild |= (B.stale || !(B.bound < prm.skin));
             }
+        if (check_criterion &&
+            prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
+          {
+            rebuild_on_missed_contacts();
+            return;
+          }
         // A rank's rebuild stalls the others (every step ends in a
         // collective): when any rank must rebuild, the others rebuild their
         // blocks that would fail soon in the same step.
@@ -1119,6 +1142,45 @@ namespace YarnImpact
           if (B.active() &&
               (B.stale || !(B.bound < prm.skin) || B.bound >= joint_bound))
             rebuild(B);
+      }
+
+
+      void
+      Model::rebuild_on_missed_contacts()
+      {
+        // The blocks that must list a missed pair: that of the lower index
+        // (its rows), and for a mirror image also the block holding the
+        // plane x = 0 (which lists all mirror pairs in that plane).
+        std::vector<std::uint8_t> &missed = missed_in_block;
+        missed.assign(blocks.size(), 0);
+        const auto mark =
+          [&](const std::size_t i, const std::size_t, const bool mirror) {
+            missed[station_block[i / nf]] = 1;
+            if (mirror)
+              for (std::size_t k = 0; k < blocks.size(); ++k)
+                missed[k] |= (blocks[k].holds_plane ? 1 : 0);
+          };
+        // Not counted as checked contacts of `Check lists`.
+        const double counted[2] = {checked_contacts, checked_mirror_contacts};
+        check_pairs(mark);
+        check_mirror_pairs(mark);
+        bool rebuilt = false;
+        for (std::size_t k = 0; k < blocks.size(); ++k)
+          if (blocks[k].active() && (blocks[k].stale || missed[k]))
+            {
+              rebuilt = true;
+              rebuild(blocks[k]);
+            }
+        // A rebuilt block lists every pair of its rows and halo closer than
+        // d + skin; a pair still missing would be one that the halos or the
+        // ghost layers failed to bring in, which the locality check
+        // forbids. Verified (collectively) after every rebuild.
+        if (n_ranks > 1)
+          rebuilt = (dealii::Utilities::MPI::max(rebuilt ? 1 : 0, comm) > 0);
+        if (rebuilt)
+          check_lists();
+        checked_contacts        = counted[0];
+        checked_mirror_contacts = counted[1];
       }
 
 

@@ -143,6 +143,19 @@ namespace YarnImpact
                         "pair with a mirror image, is listed; a missing pair "
                         "stops the run with an error. For tests: it costs "
                         "about a list rebuild per step.");
+      prm.declare_entry("List rebuilds",
+                        "criterion",
+                        Patterns::Selection("criterion|missed contact"),
+                        "When a neighbour-list block is rebuilt. criterion: "
+                        "when the bound on the relative displacements of its "
+                        "spheres since the last build reaches the skin (doc/"
+                        "dem.md section 4). missed contact: only when the "
+                        "sweep of Check lists, run before every force "
+                        "evaluation, finds a pair in contact that the block "
+                        "does not list; the motion is the same, and the "
+                        "number of rebuilds shows how many the contacts "
+                        "really need. A diagnostic: it costs about a list "
+                        "rebuild per step.");
       prm.leave_subsection();
     }
 
@@ -203,7 +216,10 @@ namespace YarnImpact
       require(joint_rebuild_fraction > 0. && joint_rebuild_fraction <= 1.,
               "DEM/Joint rebuild fraction",
               "must be in (0, 1]");
-      check_lists = prm.get_bool("Check lists");
+      check_lists   = prm.get_bool("Check lists");
+      list_rebuilds = (prm.get("List rebuilds") == "missed contact"
+                         ? ListRebuilds::missed_contact
+                         : ListRebuilds::criterion);
       prm.leave_subsection();
     }
   } // namespace DEM

@@ -85,6 +85,18 @@ namespace YarnImpact
        * missing pair stops the run. For tests: it costs about a rebuild
        * per step. */
       bool check_lists = false;
+      /** When a neighbour-list block is rebuilt (doc/dem.md section 4). */
+      enum class ListRebuilds
+      {
+        /** When its displacement bound reaches the skin (sound, cheap). */
+        criterion,
+        /** Only when the sweep of check_lists, run before every force
+         * evaluation, finds a contact that the block does not list: how
+         * few rebuilds the contacts need (a diagnostic; it costs about a
+         * rebuild per step). */
+        missed_contact
+      };
+      ListRebuilds list_rebuilds = ListRebuilds::criterion;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
