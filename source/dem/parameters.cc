@@ -141,8 +141,10 @@ namespace YarnImpact
                         "the neighbour lists, that every pair of spheres "
                         "closer than the fibre diameter, and every such "
                         "pair with a mirror image, is listed; a missing pair "
-                        "stops the run with an error. For tests: it costs "
-                        "about a list rebuild per step.");
+                        "stops the run with an error. For tests: the sweep "
+                        "compares each sphere with every sphere less than a "
+                        "diameter away along the yarn, so a run takes 3 "
+                        "times as long with 40 fibres and 25 times with 400.");
       prm.declare_entry("List rebuilds",
                         "criterion",
                         Patterns::Selection("criterion|missed contact"),
@@ -154,8 +156,8 @@ namespace YarnImpact
                         "evaluation, finds a pair in contact that the block "
                         "does not list; the motion is the same, and the "
                         "number of rebuilds shows how many the contacts "
-                        "really need. A diagnostic: it costs about a list "
-                        "rebuild per step.");
+                        "really need. A diagnostic, as slow as Check "
+                        "lists.");
       prm.leave_subsection();
     }
 
