@@ -1155,7 +1155,7 @@ namespace YarnImpact
         missed.assign(blocks.size(), 0);
         const auto mark =
           [&](const std::size_t i, const std::size_t, const bool mirror) {
-            missed[station_block[i / nf]] = 1;
+            missed[&block_of(i) - blocks.data()] = 1;
             if (mirror)
               for (std::size_t k = 0; k < blocks.size(); ++k)
                 missed[k] |= (blocks[k].holds_plane ? 1 : 0);
@@ -1174,11 +1174,16 @@ namespace YarnImpact
         // A rebuilt block lists every pair of its rows and halo closer than
         // d + skin; a pair still missing would be one that the halos or the
         // ghost layers failed to bring in, which the locality check
-        // forbids. Verified (collectively) after every rebuild.
-        if (n_ranks > 1)
-          rebuilt = (dealii::Utilities::MPI::max(rebuilt ? 1 : 0, comm) > 0);
-        if (rebuilt)
-          check_lists();
+        // forbids. Verified (collectively) after every rebuild, unless
+        // `Check lists` verifies every step anyway (compute_forces()).
+        if (!prm.check_lists)
+          {
+            if (n_ranks > 1)
+              rebuilt =
+                (dealii::Utilities::MPI::max(rebuilt ? 1 : 0, comm) > 0);
+            if (rebuilt)
+              check_lists();
+          }
         checked_contacts        = counted[0];
         checked_mirror_contacts = counted[1];
       }
