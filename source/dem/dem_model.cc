@@ -562,7 +562,7 @@ namespace YarnImpact
           prm.tangential_stiffness_ratio * projectile_law.k_n;
         projectile_law.mu = prm.projectile_friction;
 
-        // Stable step (physics.md 4.1): Gershgorin bound of a sphere with
+        // Stable step (doc/theory.md 3.2): Gershgorin bound of a sphere with
         // two trusses, `coordination` fibre contacts and the projectile,
         // reduced for the contact damping.
         const double omega2 = 2. *

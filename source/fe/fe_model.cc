@@ -619,7 +619,7 @@ namespace YarnImpact
     YarnModel<Law>::stable_time_step() const
     {
       // Per cell, the bound 1/sqrt(sum_k (c_k/h_k)^2) over its three local
-      // directions (physics.md section 4.2) with the current sizes h_k
+      // directions (doc/theory.md section 3.3) with the current sizes h_k
       // (distances between opposite face centroids): the yarn flattens
       // under the projectile and its cells thin.
       const double c_axial2 = law.axial_modulus() / law.density;

@@ -1,4 +1,4 @@
-// The Charmetant law against the closed forms of physics.md section 1.7
+// The Charmetant law against the closed forms of doc/theory.md section 1.5
 // (a)-(e), its stress against the derivative of W by automatic
 // differentiation (Sacado) at random deformations, and its finiteness and
 // symmetry at exactly transversely isotropic states.
@@ -81,7 +81,7 @@ main()
     Invariants inv;
     paper_law().stress(F, P, inv);
     check("P11", 1e-6 * P[0], 1e-6 * k.k_e * std::log(l) / l, 1e-10);
-    check("P11 (physics.md)", 1e-6 * P[0], 3386.98, 2e-6);
+    check("P11 (doc/theory.md 1.5)", 1e-6 * P[0], 3386.98, 2e-6);
     kirchhoff(F, tau, W);
     check("tau11", tau[0], 1e-6 * k.k_e * std::log(l), 1e-10);
     std::printf("%-34s %12.3e\n",

@@ -1,4 +1,4 @@
-// Smith theory (physics.md section 2.2) for the DEM fibre data (linear
+// Smith theory (doc/theory.md section 2.3) for the DEM fibre data (linear
 // law) and for the FE continuum (P = k_e ln(1+e)/(1+e)), at 120 m/s.
 
 #include <yarn_impact/analysis/smith_theory.h>
@@ -18,7 +18,7 @@ namespace
   {
     const bool ok =
       std::abs(value - reference) <= tolerance * std::abs(reference);
-    std::printf("  %-30s %12.5f  physics.md %12.5f  %s\n",
+    std::printf("  %-30s %12.5f  reference %12.5f  %s\n",
                 name,
                 value,
                 reference,

@@ -40,7 +40,7 @@ namespace YarnImpact
 
     /**
      * Write @p summary, the two models' mass per length and axial stiffness
-     * side by side (physics.md section 1.8), and the end-of-run energy
+     * side by side (doc/theory.md section 1.7), and the end-of-run energy
      * budgets of both models.
      */
     void

@@ -9,7 +9,7 @@ namespace YarnImpact
   {
     /**
      * Smith's solution for a long yarn hit transversely at constant speed
-     * \f$V\f$ (physics.md section 2.1), generalised to a nonlinear nominal
+     * \f$V\f$ (doc/theory.md section 2.1), generalised to a nonlinear nominal
      * stress \f$P(\varepsilon)\f$:
      * \f[
      *   c(\varepsilon) = \sqrt{P'(\varepsilon)/\rho},\quad

@@ -9,7 +9,7 @@
 
 namespace YarnImpact
 {
-  /** One row of the history (design.md section 7), in SI units. */
+  /** One row of the history (doc/user-guide.md), in SI units. */
   struct HistoryRow
   {
     /** Simulated time [s]. */

@@ -13,8 +13,8 @@ namespace YarnImpact
 
   /**
    * Observables of a model at one instant, defined the same way in both
-   * models (design.md section 7). All values are those of the whole yarn,
-   * whatever the symmetry.
+   * models (doc/user-guide.md, "History columns"). All values are those of
+   * the whole yarn, whatever the symmetry.
    */
   struct Observables
   {
@@ -66,7 +66,7 @@ namespace YarnImpact
 
   /**
    * The interface every yarn model implements so that ImpactSimulation can
-   * drive it (design.md section 3). The time loop is velocity Verlet:
+   * drive it (doc/theory.md section 3.1). The time loop is velocity Verlet:
    *
    * @code
    * kick(dt/2); drift(dt); F = compute_forces(projectile); kick(dt/2);

@@ -70,8 +70,8 @@ namespace YarnImpact
   };
 
   /**
-   * The time loop shared by all models (design.md section 3): owns the
-   * clock, the projectile, the history, the snapshots and the progress
+   * The time loop shared by all models (doc/theory.md section 3.1): owns
+   * the clock, the projectile, the history, the snapshots and the progress
    * line, and drives one ImpactModel with velocity Verlet (central
    * difference).
    */

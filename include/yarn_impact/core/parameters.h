@@ -26,7 +26,8 @@ namespace YarnImpact
       both
     };
 
-    /** Symmetry used to reduce the modelled domain (design.md section 4). */
+    /** Symmetry used to reduce the modelled domain (doc/fe-model.md and
+     * doc/dem.md, section 1). */
     enum class Symmetry
     {
       none,    ///< the whole yarn

@@ -16,7 +16,7 @@ namespace dealii
 
 namespace YarnImpact
 {
-  /** The microscopic discrete-element reference model (design.md section 6). */
+  /** The microscopic discrete-element reference model (doc/dem.md). */
   namespace DEM
   {
     /** Where the fibre centres come from. */

@@ -16,7 +16,7 @@ namespace YarnImpact
      */
     using Matrix3 = double[9];
 
-    /** The three physical invariants of the Charmetant law (physics.md
+    /** The three physical invariants of the Charmetant law (doc/theory.md
      * section 1.2), fibre direction M = e_x. */
     struct Invariants
     {
@@ -34,10 +34,10 @@ namespace YarnImpact
      * \f[
      *   W = \tfrac12 k_e I_e^2 + k_{tc}|I_{tc}|^p + \tfrac12 k_{td} I_{td}^2,
      * \f]
-     * with the NaN-free evaluation of physics.md section 1.5: the distortion
-     * measure comes from the Schur complement of C on the section plane,
-     * \f$I_{td} = \tfrac12\mathrm{asinh}(s)\f$, and never from
-     * \f$\mathrm{acosh}\,\zeta\f$.
+     * with the NaN-free evaluation of doc/theory.md section 1.4: the
+     * distortion measure comes from the Schur complement of C on the
+     * section plane, \f$I_{td} = \tfrac12\mathrm{asinh}(s)\f$, and never
+     * from \f$\mathrm{acosh}\,\zeta\f$.
      */
     class CharmetantLaw
     {
@@ -109,7 +109,7 @@ namespace YarnImpact
 
       /** Modulus of the transverse P wave at a compaction state,
        * \f$K_T(I_{tc}) + k_{td}/4\f$ with \f$K_T = p(p-1)k_{tc}/4
-       * |I_{tc}|^{p-2}\f$ (physics.md section 1.8), bounded at the
+       * |I_{tc}|^{p-2}\f$ (doc/theory.md section 1.6), bounded at the
        * reference state by its value at |I_tc| = 1e-3 [Pa]. */
       double
       transverse_modulus(const Invariants &inv) const;
@@ -345,7 +345,7 @@ namespace YarnImpact
       const V gp      = (p * k_tc) * pow_pm1 * lane_sign(Itc);
 
       // Distortion from the Schur complement of C on the section plane,
-      // which stays accurate as s -> 0 (physics.md section 1.5).
+      // which stays accurate as s -> 0 (doc/theory.md section 1.4).
       const V t11 = C[4] - C[1] * C[1] * inv_I4;
       const V t22 = C[8] - C[2] * C[2] * inv_I4;
       const V t12 = C[5] - C[1] * C[2] * inv_I4;

@@ -11,7 +11,7 @@
 
 namespace YarnImpact
 {
-  /** The mesoscopic finite-element yarn model (design.md section 5). */
+  /** The mesoscopic finite-element yarn model (doc/fe-model.md). */
   namespace FE
   {
     /**
