@@ -102,6 +102,7 @@ namespace YarnImpact
     Parameters::Shared::declare_parameters(prm);
     FE::Parameters::declare_parameters(prm);
     DEM::Parameters::declare_parameters(prm);
+    DEM::ElementaryTestParameters::declare_parameters(prm);
   }
 
   void
@@ -110,6 +111,12 @@ namespace YarnImpact
     shared.parse_parameters(prm);
     fe.parse_parameters(prm);
     dem.parse_parameters(prm);
+    elementary.parse_parameters(prm);
+    Parameters::require(
+      elementary.loading == DEM::ElementaryLoading::none ||
+        shared.general.model == Parameters::ModelType::dem,
+      "Elementary test/Loading",
+      "is a loading of the DEM model: it needs Model = dem");
     if (shared.general.model != Parameters::ModelType::dem)
       FE::validate(shared, fe);
   }
@@ -200,6 +207,24 @@ namespace YarnImpact
           {
             std::ofstream resolved(output.directory + "/parameters.prm");
             prm.print_parameters(resolved, ParameterHandler::ShortPRM);
+          }
+
+        if (parameters.elementary.loading != DEM::ElementaryLoading::none)
+          {
+            const bool passed =
+              DEM::run_elementary_test(parameters.shared,
+                                       parameters.dem,
+                                       parameters.elementary,
+                                       MPI_COMM_WORLD,
+                                       out);
+            if (!passed)
+              {
+                if (is_root)
+                  std::cerr
+                    << "yarn-impact: error: a verification check failed\n";
+                return 3;
+              }
+            return 0;
           }
 
         std::vector<Parameters::ModelType> models;

@@ -3,6 +3,7 @@
 
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/dem/elementary_test.h>
 #include <yarn_impact/fe/parameters.h>
 
 #include <iosfwd>
@@ -21,6 +22,7 @@ namespace YarnImpact
     Parameters::Shared shared;
     FE::Parameters fe;
     DEM::Parameters dem;
+    DEM::ElementaryTestParameters elementary;
 
     /** Declare every entry. */
     static void
