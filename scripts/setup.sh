@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages="cmake g++ make libdeal.ii-dev numdiff openmpi-bin python3-matplotlib $*"
+packages="cmake g++ make libdeal.ii-dev numdiff openmpi-bin python3-matplotlib python3-numpy python3-scipy $*"
 missing=""
 for p in $packages; do
   dpkg -s "$p" > /dev/null 2>&1 || missing="$missing $p"

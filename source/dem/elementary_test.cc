@@ -63,6 +63,8 @@ namespace YarnImpact
          * pushes it outwards [N], and its number of contacts. */
         double load       = 0.;
         unsigned int n_in = 0;
+        /** Integral part of the servo's velocity [m/s]. */
+        double integral = 0.;
       };
 
       /** Values summed over all spheres for one CSV row. */
@@ -909,16 +911,24 @@ namespace YarnImpact
       };
 
 
-      /** Servo of a wall that holds the yarn at @p force [N]: it moves
-       * outwards when the yarn pushes harder, closing a fraction of the
-       * force error per step, at most at @p v_max [m/s]. */
+      /** Servo of a wall that holds the yarn at @p force [N]: a PI
+       * controller on the force error, critically damped for the stiffness
+       * of the wall's contacts, so that it follows a spreading section
+       * without a lag error; at most @p v_max [m/s]. */
       void
       servo(Wall &w, const double force, const double k_n, const double dt,
             const double v_max)
       {
-        const double gain = 0.05 / (k_n * std::max(1u, w.n_in) * dt);
-        const double v    = std::clamp(gain * (w.load - force), -v_max, v_max);
-        w.velocity        = w.side * v;
+        constexpr double alpha = 0.05; // error closed per step, proportional
+        const double k   = k_n * std::max(1u, w.n_in);
+        const double err = w.load - force;
+        w.integral = std::clamp(w.integral + 0.25 * alpha * alpha * err /
+                                               (k * dt),
+                                -v_max,
+                                v_max);
+        const double v =
+          std::clamp(alpha * err / (k * dt) + w.integral, -v_max, v_max);
+        w.velocity = w.side * v;
       }
 
 
@@ -967,7 +977,8 @@ namespace YarnImpact
         if (pressure > 0.)
           {
             const double gap_z0 = W[2].position - W[3].position;
-            const double v_max  = 5. * t.strain_rate * std::max(gap_y0, gap_z0);
+            const double v_max =
+              10. * t.strain_rate * std::max(gap_y0, gap_z0);
             const double t_end  = t.consolidation_time;
             double next         = 0.;
             while (true)
@@ -995,7 +1006,12 @@ namespace YarnImpact
         const double gap_ref = W[0].position - W[1].position;
         const double mid     = 0.5 * (W[0].position + W[1].position);
         const double v_plate = 0.5 * t.strain_rate * gap_ref;
-        const double v_max   = 5. * t.strain_rate * gap_ref;
+        // The section spreads in z faster than the plates close in y (it is
+        // wider than thick): the walls may move at several times the
+        // plates' speed over the larger gap.
+        const double v_max =
+          10. * t.strain_rate *
+          std::max(gap_ref, W[2].active ? W[2].position - W[3].position : 0.);
         for (const bool loading : {true, false})
           {
             if (!loading && !t.unload)
@@ -1196,19 +1212,26 @@ namespace YarnImpact
                   const double stored = r.sums.truss + r.sums.contact;
                   ke_ratio = std::max(ke_ratio, r.sums.kinetic / stored);
                   if (pc > 0.)
-                    {
-                      // Cauchy stresses of the box of walls.
-                      const double s_yy = r.plate_load / r.wall_gap,
-                                   s_zz = r.wall_load / r.plate_gap;
-                      ratio_peak = std::max(ratio_peak, s_yy / s_zz);
-                      servo_err  = std::max(servo_err, std::abs(s_zz / pc - 1.));
-                    }
+                    servo_err = std::max(servo_err,
+                                         std::abs(r.wall_load / r.plate_gap /
+                                                    pc -
+                                                  1.));
+                }
+              // Peak ratio of the Cauchy stresses of the box of walls, on
+              // the rows where the side walls hold the pressure.
+              for (std::size_t k = first; pc > 0. && k < rec.rows.size(); ++k)
+                {
+                  const Row &r = rec.rows[k];
+                  const double s_yy = r.plate_load / r.wall_gap,
+                               s_zz = r.wall_load / r.plate_gap;
+                  if (r.phase == "load" && std::abs(s_zz / pc - 1.) < 0.05)
+                    ratio_peak = std::max(ratio_peak, s_yy / s_zz);
                 }
               const Row &end = rec.rows.back();
               report << "  confining pressure                      "
                      << fixed(pc * 1e-6, 2) << " MPa\n";
               if (at_peak)
-                report << "  at the largest plate strain ("
+                report << "  at the peak of -tau_yy (plate strain "
                        << fixed(at_peak->strain, 3)
                        << "): F_yy " << fixed(at_peak->F[4], 4) << ", F_zz "
                        << fixed(at_peak->F[8], 4) << ", I_tc "

@@ -1,0 +1,323 @@
+#!/usr/bin/python3
+"""Identify the Charmetant law's constants k_e, k_tc, p, k_td from the CSVs of
+the DEM elementary tests (doc/identification.md section 3).
+
+The law W = k_e I_e^2/2 + k_tc |I_tc|^p + k_td I_td^2/2 is linear in the
+moduli for a fixed p, so the fit is a one-dimensional search over p with a
+non-negative linear least-squares solve for the moduli inside (variable
+projection). The Kirchhoff stress of the law at each row's deformation
+gradient F is tau = (dW/dF) F^T, with the derivatives of the invariants
+taken by central differences of their closed forms.
+
+  identify_charmetant.py [--prm OUT.prm] [--base BASE.prm] [--plot OUT.png]
+                         [--directory DIR] CSV...
+
+Rows used: tension rows before the first fibre break (tau_xx); compaction
+and distortion rows of the loading branch (tau_yy, tau_zz, tau_yz). Each
+test (a CSV, and a confining pressure of the distortion CSV) is weighted by
+its own RMS stress, so that the GPa of tension does not drown the MPa of
+the section. Prints the constants with their standard errors (from the
+Jacobian at the optimum), the residual of each test, and the constants
+fitted to each test alone.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+import numpy as np
+from scipy.optimize import minimize_scalar, nnls
+
+
+def invariants(F):
+    """(I_e, I_tc, I_td) of deformation gradients F[..., 3, 3] (fibre = x),
+    as the FE code evaluates them (doc/theory.md section 1)."""
+    C = np.einsum("...ki,...kj->...ij", F, F)
+    J = np.linalg.det(F)
+    I4 = C[..., 0, 0]
+    t11 = C[..., 1, 1] - C[..., 0, 1] ** 2 / I4
+    t22 = C[..., 2, 2] - C[..., 0, 2] ** 2 / I4
+    t12 = C[..., 1, 2] - C[..., 0, 1] * C[..., 0, 2] / I4
+    s2 = ((t11 - t22) ** 2 + 4.0 * t12 ** 2) / (4.0 * J * J / I4)
+    return (0.5 * np.log(I4), 0.5 * np.log(J) - 0.25 * np.log(I4),
+            0.5 * np.arcsinh(np.sqrt(s2)))
+
+
+def kirchhoff_bases(F, h=1e-7):
+    """For each F (n x 3 x 3): G_e = dI_e/dF F^T, G_tc = dI_tc/dF F^T and
+    G_td = d(I_td^2/2)/dF F^T (I_td^2 is smooth where I_td is not)."""
+    n = F.shape[0]
+    dIe = np.zeros((n, 3, 3))
+    dItc = np.zeros((n, 3, 3))
+    dItd = np.zeros((n, 3, 3))
+    for a in range(3):
+        for b in range(3):
+            Fp = F.copy()
+            Fm = F.copy()
+            Fp[:, a, b] += h
+            Fm[:, a, b] -= h
+            ep, cp, dp = invariants(Fp)
+            em, cm, dm = invariants(Fm)
+            dIe[:, a, b] = (ep - em) / (2 * h)
+            dItc[:, a, b] = (cp - cm) / (2 * h)
+            dItd[:, a, b] = (0.5 * dp ** 2 - 0.5 * dm ** 2) / (2 * h)
+    FT = np.transpose(F, (0, 2, 1))
+    return dIe @ FT, dItc @ FT, dItd @ FT
+
+
+COMPONENTS = {"xx": (0, 0), "yy": (1, 1), "zz": (2, 2), "yz": (1, 2)}
+
+
+class Group:
+    """The rows of one test (a CSV, or one confining pressure of it)."""
+
+    def __init__(self, name, rows, components):
+        self.name = name
+        self.rows = rows
+        self.components = components
+        F = np.zeros((len(rows), 3, 3))
+        for k, r in enumerate(rows):
+            F[k] = [[float(r["F_xx"]), 0.0, 0.0],
+                    [0.0, float(r["F_yy"]), float(r["F_yz"])],
+                    [0.0, float(r["F_zy"]), float(r["F_zz"])]]
+        self.F = F
+        self.Ie, self.Itc, self.Itd = invariants(F)
+        self.Ge, self.Gtc, self.Gtd = kirchhoff_bases(F)
+        self.tau = {c: np.array([float(r["tau_" + c]) for r in rows])
+                    for c in components}
+        y = np.concatenate([self.tau[c] for c in components])
+        self.scale = max(float(np.sqrt(np.mean(y ** 2))), 1e-300)
+
+    def columns(self, p):
+        """Design matrix (rows x [k_e, k_tc, k_td]) at exponent p, and the
+        derivative of the k_tc column with respect to p, both scaled."""
+        a = np.abs(self.Itc)
+        sgn = np.sign(self.Itc)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            g1 = np.where(a > 0, p * a ** (p - 1) * sgn, 0.0)
+            dg1 = np.where(a > 0, (a ** (p - 1) + p * a ** (p - 1) *
+                                   np.log(np.where(a > 0, a, 1.0))) * sgn, 0.0)
+        A, dA, y = [], [], []
+        for c in self.components:
+            i, j = COMPONENTS[c]
+            A.append(np.column_stack([self.Ie * self.Ge[:, i, j],
+                                      g1 * self.Gtc[:, i, j],
+                                      self.Gtd[:, i, j]]))
+            dA.append(dg1 * self.Gtc[:, i, j])
+            y.append(self.tau[c])
+        return (np.vstack(A) / self.scale, np.concatenate(dA) / self.scale,
+                np.concatenate(y) / self.scale)
+
+
+def read_groups(files):
+    groups = []
+    for path in files:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        if not rows:
+            sys.exit("identify_charmetant: no rows in " + path)
+        loading = rows[0]["loading"]
+        if loading == "tension":
+            used = [r for r in rows if int(r["broken_fibres"]) == 0]
+            groups.append(Group(os.path.basename(path), used, ["xx"]))
+        else:
+            pressures = sorted({float(r["confining_pressure"]) for r in rows})
+            for pc in pressures:
+                used = [r for r in rows if r["phase"] == "load" and
+                        float(r["confining_pressure"]) == pc and
+                        float(r["imposed_strain"]) > 0]
+                name = os.path.basename(path)
+                if pc > 0:
+                    name += " p_c=%g MPa" % (pc * 1e-6)
+                groups.append(Group(name, used, ["yy", "zz", "yz"]))
+    return groups
+
+
+def solve(groups, p, free):
+    """Non-negative moduli at exponent p for the moduli flagged in free."""
+    parts = [g.columns(p) for g in groups]
+    A = np.vstack([a for a, _, _ in parts])
+    y = np.concatenate([b for _, _, b in parts])
+    cols = [k for k in range(3) if free[k]]
+    k = np.zeros(3)
+    if cols:
+        sol, _ = nnls(A[:, cols], y)
+        k[cols] = sol
+    r = A @ k - y
+    return k, float(r @ r), A, y
+
+
+def fit(groups, p_bounds=(1.01, 8.0)):
+    """Returns (k_e, k_tc, p, k_td), their standard errors and the residual
+    sum of squares (scaled)."""
+    free = [any(np.any(g.Ge != 0) and np.any(g.Ie != 0) for g in groups),
+            any(np.any(g.Itc != 0) for g in groups),
+            any(np.any(g.Itd != 0) for g in groups)]
+    if free[1]:
+        res = minimize_scalar(lambda p: solve(groups, p, free)[1],
+                              bounds=p_bounds, method="bounded",
+                              options={"xatol": 1e-10})
+        p = float(res.x)
+    else:
+        p = float("nan")
+    k, ssr, A, y = solve(groups, p if free[1] else 2.0, free)
+    # Jacobian in (k_e, k_tc, p, k_td) at the optimum.
+    dA = np.concatenate([g.columns(p if free[1] else 2.0)[1] for g in groups])
+    J = np.column_stack([A[:, 0], A[:, 1], k[1] * dA, A[:, 2]])
+    use = [0 if not free[0] else 1, free[1], free[1], free[2]]
+    use = [i for i, u in enumerate(use) if u]
+    m, nparam = len(y), len(use)
+    errors = np.full(4, float("nan"))
+    cond = float("nan")
+    if m > nparam and nparam > 0:
+        Ju = J[:, use]
+        s2 = ssr / (m - nparam)
+        JTJ = Ju.T @ Ju
+        # Of the relative sensitivities (columns times the constants).
+        scale = np.array([k[0], k[1], p if free[1] else 1.0, k[2]])[use]
+        cond = float(np.linalg.cond(Ju * np.where(scale != 0, scale, 1.0)))
+        try:
+            cov = s2 * np.linalg.inv(JTJ)
+            errors[use] = np.sqrt(np.abs(np.diag(cov)))
+        except np.linalg.LinAlgError:
+            pass
+    theta = np.array([k[0], k[1], p, k[2]])
+    return theta, errors, ssr, cond
+
+
+def predicted(group, theta):
+    k_e, k_tc, p, k_td = theta
+    A, _, y = group.columns(p if np.isfinite(p) else 2.0)
+    return (A @ np.array([k_e, k_tc, k_td]) * group.scale,
+            y * group.scale)
+
+
+def write_prm(path, base, theta, directory, sources):
+    """The FE case of @p base with the identified constants."""
+    with open(base) as f:
+        text = f.read()
+    k_e, k_tc, p, k_td = theta
+    lines = text.splitlines()
+    out = ["# Written by scripts/identify_charmetant.py from " +
+           ", ".join(sources) + ":",
+           "# the FE case of %s with the Charmetant constants identified"
+           % base,
+           "# from the DEM elementary tests (doc/identification.md)."]
+    skip_comment = True
+    for line in lines:
+        if skip_comment and line.startswith("#"):
+            continue
+        skip_comment = False
+        s = line.strip()
+        if s.startswith("set Directory"):
+            line = line[:line.index("=") + 1] + " " + directory
+        out.append(line)
+    out += ["",
+            "subsection FE",
+            "  subsection Charmetant",
+            "    set k_e  = %.6e" % k_e,
+            "    set k_tc = %.6e" % k_tc,
+            "    set p    = %.6f" % (p if np.isfinite(p) else 2.0),
+            "    set k_td = %.6e" % k_td,
+            "  end",
+            "end", ""]
+    with open(path, "w") as f:
+        f.write("\n".join(out))
+
+
+def plot(path, groups, theta):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    n = len(groups)
+    fig, axes = plt.subplots(1, n, figsize=(4.2 * n, 3.8), squeeze=False)
+    for ax, g in zip(axes[0], groups):
+        pred, meas = predicted(g, theta)
+        m = len(g.rows)
+        if g.components == ["xx"]:
+            ax.plot(g.Ie * 100, meas[:m] * 1e-6, "k.", ms=3, label="DEM")
+            ax.plot(g.Ie * 100, pred[:m] * 1e-6, "r-", label="fit")
+            ax.set_xlabel("I_e [%]")
+            ax.set_ylabel("tau_xx [MPa]")
+        else:
+            strain = np.array([float(r["imposed_strain"]) for r in g.rows])
+            for k, (c, col) in enumerate(zip(g.components, "brg")):
+                ax.plot(strain, meas[k * m:(k + 1) * m] * 1e-6, col + ".",
+                        ms=3, label="DEM tau_" + c)
+                ax.plot(strain, pred[k * m:(k + 1) * m] * 1e-6, col + "-",
+                        lw=1, label="fit tau_" + c)
+            ax.set_xlabel("plate strain 1 - gap/gap_0 [-]")
+            ax.set_ylabel("Kirchhoff stress [MPa]")
+        ax.set_title(g.name, fontsize=9)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Charmetant law fitted to the DEM elementary tests: "
+                 "k_e %.4g MPa, k_tc %.4g MPa, p %.3f, k_td %.4g MPa"
+                 % (theta[0] * 1e-6, theta[1] * 1e-6, theta[2],
+                    theta[3] * 1e-6), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("csv", nargs="+")
+    ap.add_argument("--prm", help="write the FE case with the constants")
+    ap.add_argument("--base", default=os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), "..", "prm",
+        "km2_120ms_fe.prm"), help="FE case the written .prm is based on")
+    ap.add_argument("--directory", default="results/km2_120ms_fe_identified",
+                    help="Output/Directory of the written .prm")
+    ap.add_argument("--plot", help="PNG of the curves and the fit")
+    ap.add_argument("--expect", help="k_e,k_tc,p,k_td the fit must return "
+                    "(a test): exit 1 if any differs by more than --tolerance")
+    ap.add_argument("--tolerance", type=float, default=0.01,
+                    help="relative tolerance of --expect")
+    ap.add_argument("--each", action="store_true",
+                    help="also fit each test alone")
+    args = ap.parse_args()
+
+    groups = read_groups(args.csv)
+    theta, err, ssr, cond = fit(groups)
+    names = ["k_e [MPa]", "k_tc [MPa]", "p [-]", "k_td [MPa]"]
+    unit = [1e-6, 1e-6, 1.0, 1e-6]
+    print("Charmetant constants from %d tests (%d rows):"
+          % (len(groups), sum(len(g.rows) for g in groups)))
+    for name, v, e, u in zip(names, theta, err, unit):
+        print("  %-11s %14.6g  +- %.3g" % (name, v * u, e * u))
+    print("  condition number of the relative Jacobian %.3g" % cond)
+    print("Residual per test (RMS of fit - DEM over the test's RMS stress):")
+    for g in groups:
+        pred, meas = predicted(g, theta)
+        rel = math.sqrt(np.mean((pred - meas) ** 2)) / g.scale
+        print("  %-40s %8.4f   (RMS stress %.4g MPa, %d rows)"
+              % (g.name, rel, g.scale * 1e-6, len(g.rows)))
+    if args.each:
+        print("Each test alone:")
+        for g in groups:
+            t, e, _, _ = fit([g])
+            print("  %-40s k_e %.6g  k_tc %.6g  p %.4g  k_td %.6g MPa"
+                  % (g.name, t[0] * 1e-6, t[1] * 1e-6, t[2], t[3] * 1e-6))
+    if args.prm:
+        write_prm(args.prm, args.base, theta, args.directory,
+                  [os.path.basename(c) for c in args.csv])
+        print("wrote " + args.prm)
+    if args.plot:
+        plot(args.plot, groups, theta)
+        print("wrote " + args.plot)
+    if args.expect:
+        expected = [float(v) for v in args.expect.split(",")]
+        ok = True
+        for name, v, e in zip(names, theta, expected):
+            rel = abs(v / e - 1.0)
+            good = rel <= args.tolerance
+            ok = ok and good
+            print("  %s: identified %.6g, expected %.6g, relative error "
+                  "%.2e: %s" % (name.split()[0], v, e, rel,
+                                "PASSED" if good else "FAILED"))
+        sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()
