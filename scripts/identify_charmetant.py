@@ -13,10 +13,15 @@ taken by central differences of their closed forms.
                          [--directory DIR] CSV...
 
 Rows used: tension rows before the first fibre break (tau_xx); compaction
-and distortion rows of the loading branch (tau_yy, tau_zz, tau_yz). Each
-test (a CSV, and a confining pressure of the distortion CSV) is weighted by
-its own RMS stress, so that the GPa of tension does not drown the MPa of
-the section. Prints the constants with their standard errors (from the
+and distortion rows of the loading branch: their deviator tau_yy - tau_zz
+and tau_yz always, their mean transverse stress (tau_yy + tau_zz)/2 only
+where the section's area has decreased (I_tc < 0). Where the packing has
+dilated (I_tc >= 0, a granular packing's usual state under shear), its
+pressure is the confinement it needs to carry a shear stress, which no
+hyperelastic law can carry, and a fit to it would only drive k_tc to zero
+(doc/identification.md section 3). Each test (a CSV, and a confining
+pressure of the distortion CSV) is weighted by its own RMS stress, so that
+the GPa of tension does not drown the MPa of the section. Prints the constants with their standard errors (from the
 Jacobian at the optimum), the residual of each test, and the constants
 fitted to each test alone.
 """
@@ -66,7 +71,17 @@ def kirchhoff_bases(F, h=1e-7):
     return dIe @ FT, dItc @ FT, dItd @ FT
 
 
-COMPONENTS = {"xx": (0, 0), "yy": (1, 1), "zz": (2, 2), "yz": (1, 2)}
+def component(c, T):
+    """Stress component c of the tensors T[..., 3, 3]."""
+    if c == "xx":
+        return T[..., 0, 0]
+    if c == "yz":
+        return T[..., 1, 2]
+    if c == "dev":
+        return T[..., 1, 1] - T[..., 2, 2]
+    if c == "mean":
+        return 0.5 * (T[..., 1, 1] + T[..., 2, 2])
+    raise KeyError(c)
 
 
 class Group:
@@ -84,9 +99,17 @@ class Group:
         self.F = F
         self.Ie, self.Itc, self.Itd = invariants(F)
         self.Ge, self.Gtc, self.Gtd = kirchhoff_bases(F)
-        self.tau = {c: np.array([float(r["tau_" + c]) for r in rows])
-                    for c in components}
-        y = np.concatenate([self.tau[c] for c in components])
+        tau = np.zeros((len(rows), 3, 3))
+        for k, r in enumerate(rows):
+            tau[k] = [[float(r["tau_xx"]), 0.0, 0.0],
+                      [0.0, float(r["tau_yy"]), float(r["tau_yz"])],
+                      [0.0, float(r["tau_yz"]), float(r["tau_zz"])]]
+        # Rows of each component that the fit uses (see the module doc).
+        self.mask = {c: np.ones(len(rows), bool) for c in components}
+        if "mean" in components:
+            self.mask["mean"] = self.Itc < 0
+        self.tau = {c: component(c, tau) * self.mask[c] for c in components}
+        y = np.concatenate([self.tau[c][self.mask[c]] for c in components])
         self.scale = max(float(np.sqrt(np.mean(y ** 2))), 1e-300)
 
     def columns(self, p):
@@ -100,14 +123,18 @@ class Group:
                                    np.log(np.where(a > 0, a, 1.0))) * sgn, 0.0)
         A, dA, y = [], [], []
         for c in self.components:
-            i, j = COMPONENTS[c]
-            A.append(np.column_stack([self.Ie * self.Ge[:, i, j],
-                                      g1 * self.Gtc[:, i, j],
-                                      self.Gtd[:, i, j]]))
-            dA.append(dg1 * self.Gtc[:, i, j])
-            y.append(self.tau[c])
+            w = self.mask[c]
+            A.append(np.column_stack([self.Ie * component(c, self.Ge),
+                                      g1 * component(c, self.Gtc),
+                                      component(c, self.Gtd)])[w])
+            dA.append((dg1 * component(c, self.Gtc))[w])
+            y.append(self.tau[c][w])
         return (np.vstack(A) / self.scale, np.concatenate(dA) / self.scale,
                 np.concatenate(y) / self.scale)
+
+
+LABELS = {"dev": "tau_yy - tau_zz", "mean": "(tau_yy + tau_zz)/2, I_tc < 0",
+          "yz": "tau_yz"}
 
 
 def read_groups(files):
@@ -130,7 +157,7 @@ def read_groups(files):
                 name = os.path.basename(path)
                 if pc > 0:
                     name += " p_c=%g MPa" % (pc * 1e-6)
-                groups.append(Group(name, used, ["yy", "zz", "yz"]))
+                groups.append(Group(name, used, ["dev", "mean", "yz"]))
     return groups
 
 
@@ -148,12 +175,14 @@ def solve(groups, p, free):
     return k, float(r @ r), A, y
 
 
-def fit(groups, p_bounds=(1.01, 8.0)):
+def fit(groups, p_bounds=(2.0, 8.0)):
     """Returns (k_e, k_tc, p, k_td), their standard errors and the residual
-    sum of squares (scaled)."""
-    free = [any(np.any(g.Ge != 0) and np.any(g.Ie != 0) for g in groups),
-            any(np.any(g.Itc != 0) for g in groups),
-            any(np.any(g.Itd != 0) for g in groups)]
+    sum of squares (scaled). p is kept at 2 or more: below 2 the compaction
+    tangent p (p - 1) k_tc |I_tc|^(p-2) / 4 is infinite at rest, and the
+    explicit FE model's stable step with it."""
+    free = [any(np.max(np.abs(g.Ie)) > 1e-6 for g in groups),
+            any(np.max(np.abs(g.Itc)) > 1e-6 for g in groups),
+            any(np.max(np.abs(g.Itd)) > 1e-6 for g in groups)]
     if free[1]:
         res = minimize_scalar(lambda p: solve(groups, p, free)[1],
                               bounds=p_bounds, method="bounded",
@@ -171,14 +200,22 @@ def fit(groups, p_bounds=(1.01, 8.0)):
     errors = np.full(4, float("nan"))
     cond = float("nan")
     if m > nparam and nparam > 0:
-        Ju = J[:, use]
-        s2 = ssr / (m - nparam)
-        JTJ = Ju.T @ Ju
-        # Of the relative sensitivities (columns times the constants).
+        # Each test's rows reweighted by that test's own residual RMS (its
+        # noise, not its stress scale), so that the scatter of one test
+        # does not widen the interval of a constant fitted to another.
+        weights, start = np.zeros(m), 0
+        for g in groups:
+            n_g = sum(int(g.mask[c].sum()) for c in g.components)
+            r_g = (A @ k - y)[start:start + n_g]
+            weights[start:start + n_g] = 1.0 / max(
+                float(np.sqrt(np.mean(r_g ** 2))), 1e-12)
+            start += n_g
+        Ju = J[:, use] * weights[:, None]
         scale = np.array([k[0], k[1], p if free[1] else 1.0, k[2]])[use]
+        # Of the relative sensitivities (columns times the constants).
         cond = float(np.linalg.cond(Ju * np.where(scale != 0, scale, 1.0)))
         try:
-            cov = s2 * np.linalg.inv(JTJ)
+            cov = np.linalg.inv(Ju.T @ Ju)
             errors[use] = np.sqrt(np.abs(np.diag(cov)))
         except np.linalg.LinAlgError:
             pass
@@ -231,8 +268,13 @@ def plot(path, groups, theta):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     n = len(groups)
-    fig, axes = plt.subplots(1, n, figsize=(4.2 * n, 3.8), squeeze=False)
-    for ax, g in zip(axes[0], groups):
+    ncol = min(n, 3)
+    nrow = (n + ncol - 1) // ncol
+    fig, axes = plt.subplots(nrow, ncol, figsize=(5.2 * ncol, 3.9 * nrow),
+                             squeeze=False)
+    for ax in axes.flat[n:]:
+        ax.axis("off")
+    for ax, g in zip(axes.flat, groups):
         pred, meas = predicted(g, theta)
         m = len(g.rows)
         if g.components == ["xx"]:
@@ -243,10 +285,13 @@ def plot(path, groups, theta):
         else:
             strain = np.array([float(r["imposed_strain"]) for r in g.rows])
             for k, (c, col) in enumerate(zip(g.components, "brg")):
-                ax.plot(strain, meas[k * m:(k + 1) * m] * 1e-6, col + ".",
-                        ms=3, label="DEM tau_" + c)
-                ax.plot(strain, pred[k * m:(k + 1) * m] * 1e-6, col + "-",
-                        lw=1, label="fit tau_" + c)
+                w = g.mask[c]
+                lo = sum(int(g.mask[cc].sum()) for cc in g.components[:k])
+                n_c = int(w.sum())
+                ax.plot(strain[w], meas[lo:lo + n_c] * 1e-6, col + ".",
+                        ms=3, label="DEM " + LABELS[c])
+                ax.plot(strain[w], pred[lo:lo + n_c] * 1e-6, col + "-",
+                        lw=1, label="fit " + LABELS[c])
             ax.set_xlabel("plate strain 1 - gap/gap_0 [-]")
             ax.set_ylabel("Kirchhoff stress [MPa]")
         ax.set_title(g.name, fontsize=9)

@@ -1,0 +1,47 @@
+#!/bin/bash
+# The multiscale bridge in one command (doc/identification.md): the DEM
+# elementary tests (tension, compaction free and confined, distortion at
+# three confining pressures), the fit of the Charmetant constants, the FE
+# case of the paper with the identified constants, and its comparison with
+# the DEM. Results in results/identification/. About 25 minutes on 2 cores.
+#
+#   bash scripts/run_identification.sh [DEM comparison.csv]
+#
+# The DEM side of the comparison is the comparison.csv of a Model = both run
+# (results/default/comparison.csv after scripts/run_default.sh); without one,
+# the recorded doc/figures/comparison_km2_120ms.csv is used.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+out=results/identification
+mkdir -p "$out"
+np=$(nproc)
+for case in tension compaction compaction_confined distortion; do
+  dir=$out/$case
+  rm -rf "$dir"
+  sed "s#set Directory = .*#set Directory = $dir#" \
+    prm/elementary/$case.prm > "$out/$case.prm"
+  echo "== DEM elementary test: $case"
+  start=$(date +%s)
+  mpirun -np "$np" build/yarn-impact "$out/$case.prm" | grep -v '^\[' || true
+  echo "   ($(( $(date +%s) - start )) s)"
+done
+csvs="$out/tension/elementary_tension.csv $out/compaction/elementary_compaction.csv $out/compaction_confined/elementary_compaction.csv $out/distortion/elementary_distortion.csv"
+echo "== Fit"
+/usr/bin/python3 scripts/identify_charmetant.py --each \
+  --prm "$out/km2_120ms_fe_identified.prm" \
+  --directory "$out/fe_identified" --plot "$out/fit.png" $csvs \
+  | tee "$out/fit.txt"
+echo "== FE impact with the identified constants"
+rm -rf "$out/fe_identified" "$out/fe_table1"
+build/yarn-impact "$out/km2_120ms_fe_identified.prm" | sed -n "/^Summary/,\$p" || echo "   (the FE run stopped early; its history up to the stop is compared)"
+sed "s#set Directory .*=.*#set Directory = $out/fe_table1#" \
+  prm/km2_120ms_fe.prm > "$out/km2_120ms_fe_table1.prm"
+build/yarn-impact "$out/km2_120ms_fe_table1.prm" > /dev/null
+dem=${1:-results/default/comparison.csv}
+[ -f "$dem" ] || dem=doc/figures/comparison_km2_120ms.csv
+echo "== Against the DEM ($dem)"
+/usr/bin/python3 scripts/compare_identified.py "$dem" "$out/impact.png" \
+  "Table 1=$out/fe_table1/history_fe.csv" \
+  "identified=$out/fe_identified/history_fe.csv" | tee "$out/impact.txt"
