@@ -9,7 +9,9 @@ DEM.csv is either a `comparison.csv` of a `Model = both` run (its DEM
 columns are used) or a DEM `history_dem.csv`. Prints, at a few instants,
 each FE run's velocity difference to the DEM and both widths relative to
 their initial value, and the largest velocity difference before the first
-failure of either model.
+failure of either model. The width is the second-moment width
+4 sqrt(<z^2>) where the files have it (doc/identification.md section 2.4),
+else each model's own extent of the section.
 """
 import csv
 import sys
@@ -29,14 +31,18 @@ def load(path):
         raise KeyError("none of %s in %s" % (names, path))
 
     out = {"t": col("t [us]")}
+    # The second-moment width (the same definition in both models) where
+    # the file has it, else the extent of the nodes or fibre centres.
     if "v DEM [m/s]" in keys:
         out["v"] = col("v DEM [m/s]")
-        out["width"] = col("width at impact DEM [mm]")
+        out["width"] = col("RMS width at impact DEM [mm]",
+                           "width at impact DEM [mm]")
         out["spreading"] = col("spreading front DEM [mm]")
         out["failed"] = np.zeros_like(out["t"])
     else:
         out["v"] = col("projectile velocity [m/s]")
-        out["width"] = col("section width at impact [mm]")
+        out["width"] = col("section RMS width at impact [mm]",
+                           "section width at impact [mm]")
         out["spreading"] = col("spreading front [mm]")
         out["failed"] = col("failed elements", "broken trusses")
     return out

@@ -47,6 +47,9 @@ namespace YarnImpact
           mix(a.model.fronts.spreading, b.model.fronts.spreading);
         r.model.fronts.width_at_impact =
           mix(a.model.fronts.width_at_impact, b.model.fronts.width_at_impact);
+        r.model.fronts.rms_width_at_impact =
+          mix(a.model.fronts.rms_width_at_impact,
+              b.model.fronts.rms_width_at_impact);
         return r;
       }
 
@@ -79,7 +82,8 @@ namespace YarnImpact
              "longitudinal front FE [mm],longitudinal front DEM [mm],"
              "transverse front FE [mm],transverse front DEM [mm],"
              "spreading front FE [mm],spreading front DEM [mm],"
-             "width at impact FE [mm],width at impact DEM [mm]\n"
+             "width at impact FE [mm],width at impact DEM [mm],"
+             "RMS width at impact FE [mm],RMS width at impact DEM [mm]\n"
           << std::setprecision(8);
       for (const auto &row : fe)
         {
@@ -100,7 +104,8 @@ namespace YarnImpact
               << f.transverse * 1e3 << ',' << g.transverse * 1e3 << ','
               << f.spreading * 1e3 << ',' << g.spreading * 1e3 << ','
               << f.width_at_impact * 1e3 << ',' << g.width_at_impact * 1e3
-              << '\n';
+              << ',' << f.rms_width_at_impact * 1e3 << ','
+              << g.rms_width_at_impact * 1e3 << '\n';
         }
       return s;
     }

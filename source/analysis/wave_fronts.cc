@@ -10,7 +10,8 @@ namespace YarnImpact
     StationProfile::resize(const unsigned int n)
     {
       for (auto *v :
-           {&position, &axial_strain, &deflection, &width, &initial_width})
+           {&position, &axial_strain, &deflection, &width, &initial_width,
+            &rms_width})
         v->assign(n, 0.);
     }
 
@@ -23,7 +24,8 @@ namespace YarnImpact
       if (n == 0)
         return fronts;
 
-      fronts.width_at_impact = profile.width[0];
+      fronts.width_at_impact     = profile.width[0];
+      fronts.rms_width_at_impact = profile.rms_width[0];
       for (unsigned int i = 0; i < n; ++i)
         {
           const double x = profile.position[i];

@@ -26,7 +26,8 @@ namespace YarnImpact
             "transverse front [mm]",
             "spreading front [mm]",
             "section width at impact [mm]",
-            "plateau strain [-]"};
+            "plateau strain [-]",
+            "section RMS width at impact [mm]"};
   }
 
   History::History(const std::string &directory,
@@ -60,7 +61,7 @@ namespace YarnImpact
          << m.fronts.longitudinal * 1e3 << ',' << m.fronts.transverse * 1e3
          << ',' << m.fronts.spreading * 1e3 << ','
          << m.fronts.width_at_impact * 1e3 << ',' << m.fronts.plateau_strain
-         << '\n';
+         << ',' << m.fronts.rms_width_at_impact * 1e3 << '\n';
     file.flush();
   }
 } // namespace YarnImpact

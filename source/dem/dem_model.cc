@@ -2066,6 +2066,9 @@ namespace YarnImpact
         double *pstrain = buf.data() + 1, *pdefl = pstrain + n_prof,
                *pwidth = pdefl + n_prof, *ppos = pwidth + n_prof;
 
+        // Second moment of the fibre centres about z = 0 and their weight,
+        // per profile station (summed over the ranks).
+        std::vector<double> pz2(2 * n_prof, 0.);
         for (unsigned int s = st_begin; s < st_end; ++s)
           {
             const unsigned int k = (s > s_impact ? s - s_impact : s_impact - s);
@@ -2083,6 +2086,8 @@ namespace YarnImpact
                   }
                 kinetic += 0.5 * m * v2;
                 defl = std::max(defl, fy[f] - pos[3 * i + 1]);
+                pz2[k] += fw[f] * pos[3 * i + 2] * pos[3 * i + 2];
+                pz2[n_prof + k] += fw[f];
                 zmin = std::min(zmin, pos[3 * i + 2]);
                 zmax = std::max(zmax, pos[3 * i + 2]);
                 xsum += std::abs(pos[3 * i]);
@@ -2174,6 +2179,12 @@ namespace YarnImpact
                           MPI_DOUBLE,
                           MPI_MAX,
                           comm);
+            MPI_Allreduce(MPI_IN_PLACE,
+                          pz2.data(),
+                          pz2.size(),
+                          MPI_DOUBLE,
+                          MPI_SUM,
+                          comm);
           }
         o.kinetic_energy    = factor * sums[0];
         o.elastic_energy    = factor * sums[1];
@@ -2191,6 +2202,8 @@ namespace YarnImpact
             profile.deflection[k]    = pdefl[k];
             profile.width[k]         = pwidth[k];
             profile.initial_width[k] = initial_width[k];
+            profile.rms_width[k] =
+              4. * std::sqrt(pz2[k] / std::max(pz2[n_prof + k], 1e-300));
           }
         o.fronts = Analysis::measure_wave_fronts(profile, shared.wave_fronts);
         bool all_cut = nf > 0;

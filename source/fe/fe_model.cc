@@ -836,12 +836,48 @@ namespace YarnImpact
       // section are not coupled in longitudinal shear (G_LT = 0), so the
       // largest strain in a section can be well above it.
       std::vector<double> maxima(3 * n, -std::numeric_limits<double>::max());
-      std::vector<double> sums(4 * n, 0.);
+      // Sums: |x|, count, strain x volume, volume, volume x z^2 and
+      // deformed volume per station.
+      std::vector<double> sums(6 * n, 0.);
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         {
           if (cell_failed[c])
             continue;
           const unsigned int *dofs = &cell_dofs[c * n_cell_dofs];
+          // The deformed cell's volume and its second moment of z (2x2x2
+          // Gauss points of the trilinear map, vertices numbered
+          // i + 2j + 4k): each of its two node layers gets them whole.
+          double p[n_nodes][3];
+          vertex_positions(c, p);
+          double vz2 = 0., vol = 0.;
+          const double g[2] = {0.5 - 0.5 / std::sqrt(3.), 0.5 + 0.5 / std::sqrt(3.)};
+          for (unsigned int q = 0; q < 8; ++q)
+            {
+              const double xi[3] = {g[q & 1], g[(q >> 1) & 1], g[(q >> 2) & 1]};
+              double J[3][3] = {}, zq = 0.;
+              for (unsigned int a = 0; a < n_nodes; ++a)
+                {
+                  double N = 1., dN[3] = {1., 1., 1.};
+                  for (unsigned int d = 0; d < 3; ++d)
+                    {
+                      const bool hi   = (a >> d) & 1;
+                      const double nd = hi ? xi[d] : 1. - xi[d];
+                      N *= nd;
+                      for (unsigned int e = 0; e < 3; ++e)
+                        dN[e] *= (e == d ? (hi ? 1. : -1.) : nd);
+                    }
+                  zq += N * p[a][2];
+                  for (unsigned int i = 0; i < 3; ++i)
+                    for (unsigned int e = 0; e < 3; ++e)
+                      J[i][e] += p[a][i] * dN[e];
+                }
+              const double detJ = std::abs(
+                J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+                J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]));
+              vz2 += 0.125 * detJ * zq * zq;
+              vol += 0.125 * detJ;
+            }
           for (unsigned int a = 0; a < n_nodes; ++a)
             {
               const unsigned int s = static_cast<unsigned int>(std::round(
@@ -850,6 +886,8 @@ namespace YarnImpact
               sums[2 * n + s] +=
                 0.25 * cell_volume[c] * std::expm1(cell_mean_log_stretch[c]);
               sums[3 * n + s] += 0.25 * cell_volume[c];
+              sums[4 * n + s] += 0.25 * vz2;
+              sums[5 * n + s] += 0.25 * vol;
             }
         }
       for (unsigned int k = 0; k < nodes.size(); ++k)
@@ -865,6 +903,7 @@ namespace YarnImpact
           maxima[2 * n + s] = std::max(maxima[2 * n + s], -z);
           sums[s] += std::abs(x);
           sums[n + s] += 1.;
+
         }
       Utilities::MPI::max(maxima, communicator, maxima);
       Utilities::MPI::sum(sums, communicator, sums);
@@ -881,6 +920,8 @@ namespace YarnImpact
           profile.deflection[s] = maxima[s];
           profile.width[s] =
             quarter ? 2. * maxima[n + s] : maxima[n + s] + maxima[2 * n + s];
+          profile.rms_width[s] =
+            4. * std::sqrt(sums[4 * n + s] / std::max(sums[5 * n + s], 1e-300));
         }
       if (initial_width[0] == 0.)
         const_cast<std::vector<double> &>(initial_width) = profile.width;

@@ -32,6 +32,12 @@ namespace YarnImpact
       std::vector<double> width;
       /** Width of the section at t = 0 [m]. */
       std::vector<double> initial_width;
+      /** Second-moment width of the section, \f$4\sqrt{\langle z^2
+       * \rangle}\f$ about the plane z = 0, area-weighted (FE: lumped nodal
+       * masses; DEM: one weight per fibre centre). It is the full width
+       * 2 a_z of a uniformly filled ellipse, and means the same in both
+       * models (doc/identification.md section 2.4) [m]. */
+      std::vector<double> rms_width;
 
       /** Resize all arrays to @p n stations, filled with zeros. */
       void
@@ -59,6 +65,8 @@ namespace YarnImpact
       double spreading = 0.;
       /** Section width at the impact point (first station) [m]. */
       double width_at_impact = 0.;
+      /** Second-moment width at the impact point (first station) [m]. */
+      double rms_width_at_impact = 0.;
       /** Mean axial strain in the middle half of the region between the
        * transverse and the longitudinal fronts: Smith's strain behind the
        * longitudinal front [-]. */
