@@ -137,6 +137,12 @@ LABELS = {"dev": "tau_yy - tau_zz", "mean": "(tau_yy + tau_zz)/2, I_tc < 0",
           "yz": "tau_yz"}
 
 
+def short_name(path):
+    """The CSV's folder and name: the compaction tests share a file name."""
+    folder = os.path.basename(os.path.dirname(os.path.abspath(path)))
+    return folder + "/" + os.path.basename(path)
+
+
 def read_groups(files):
     groups = []
     for path in files:
@@ -147,14 +153,14 @@ def read_groups(files):
         loading = rows[0]["loading"]
         if loading == "tension":
             used = [r for r in rows if int(r["broken_fibres"]) == 0]
-            groups.append(Group(os.path.basename(path), used, ["xx"]))
+            groups.append(Group(short_name(path), used, ["xx"]))
         else:
             pressures = sorted({float(r["confining_pressure"]) for r in rows})
             for pc in pressures:
                 used = [r for r in rows if r["phase"] == "load" and
                         float(r["confining_pressure"]) == pc and
                         float(r["imposed_strain"]) > 0]
-                name = os.path.basename(path)
+                name = short_name(path)
                 if pc > 0:
                     name += " p_c=%g MPa" % (pc * 1e-6)
                 groups.append(Group(name, used, ["dev", "mean", "yz"]))
@@ -290,8 +296,9 @@ def plot(path, groups, theta):
                 n_c = int(w.sum())
                 ax.plot(strain[w], meas[lo:lo + n_c] * 1e-6, col + ".",
                         ms=3, label="DEM " + LABELS[c])
-                ax.plot(strain[w], pred[lo:lo + n_c] * 1e-6, col + "-",
-                        lw=1, label="fit " + LABELS[c])
+                ax.plot(strain[w], pred[lo:lo + n_c] * 1e-6,
+                        col + ("x" if c == "mean" else "-"), lw=1,
+                        label="fit " + LABELS[c])
             ax.set_xlabel("plate strain 1 - gap/gap_0 [-]")
             ax.set_ylabel("Kirchhoff stress [MPa]")
         ax.set_title(g.name, fontsize=9)
@@ -336,13 +343,13 @@ def main():
     for g in groups:
         pred, meas = predicted(g, theta)
         rel = math.sqrt(np.mean((pred - meas) ** 2)) / g.scale
-        print("  %-40s %8.4f   (RMS stress %.4g MPa, %d rows)"
+        print("  %-48s %8.4f   (RMS stress %.4g MPa, %d rows)"
               % (g.name, rel, g.scale * 1e-6, len(g.rows)))
     if args.each:
         print("Each test alone:")
         for g in groups:
             t, e, _, _ = fit([g])
-            print("  %-40s k_e %.6g  k_tc %.6g  p %.4g  k_td %.6g MPa"
+            print("  %-48s k_e %.6g  k_tc %.4g  p %.4g  k_td %.4g MPa"
                   % (g.name, t[0] * 1e-6, t[1] * 1e-6, t[2], t[3] * 1e-6))
     if args.prm:
         write_prm(args.prm, args.base, theta, args.directory,

@@ -7,9 +7,11 @@
 #
 #   bash scripts/run_identification.sh [DEM comparison.csv]
 #
-# The DEM side of the comparison is the comparison.csv of a Model = both run
-# (results/default/comparison.csv after scripts/run_default.sh); without one,
-# the recorded doc/figures/comparison_km2_120ms.csv is used.
+# The DEM side of the comparison is a DEM history or the comparison.csv of a
+# Model = both run (results/default/comparison.csv after
+# scripts/run_default.sh); without one, the recorded DEM history
+# doc/figures/history_dem_km2_120ms.csv (prm/km2_120ms_dem.prm, see
+# doc/identification.md section 6) is used.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -49,8 +51,28 @@ sed "s#set Directory .*=.*#set Directory = $out/fe_table1#" \
   prm/km2_120ms_fe.prm > "$out/km2_120ms_fe_table1.prm"
 build/yarn-impact "$out/km2_120ms_fe_table1.prm" > /dev/null
 dem=${1:-results/default/comparison.csv}
-[ -f "$dem" ] || dem=doc/figures/comparison_km2_120ms.csv
+[ -f "$dem" ] || dem=doc/figures/history_dem_km2_120ms.csv
 echo "== Against the DEM ($dem)"
 /usr/bin/python3 scripts/compare_identified.py "$dem" "$out/impact.png" \
   "Table 1=$out/fe_table1/history_fe.csv" \
   "identified=$out/fe_identified/history_fe.csv" | tee "$out/impact.txt"
+echo "== How soft must the section be? Table 1 with k_td = 65 and 6.5 MPa"
+sweep=""
+for ktd in 65e6 6.5e6; do
+  dir=$out/fe_table1_ktd_$ktd
+  rm -rf "$dir"
+  { sed "s#set Directory .*=.*#set Directory = $dir#" prm/km2_120ms_fe.prm
+    printf "subsection FE\n  subsection Charmetant\n    set k_td = %s\n  end\nend\n" $ktd
+  } > "$out/km2_120ms_fe_table1_ktd_$ktd.prm"
+  build/yarn-impact "$out/km2_120ms_fe_table1_ktd_$ktd.prm" > "$dir.log" 2>&1 \
+    || echo "   (k_td = $ktd: $(tail -1 "$dir.log"))"
+  sweep="$sweep k_td_${ktd}=$dir/history_fe.csv"
+done
+/usr/bin/python3 scripts/compare_identified.py "$dem" "$out/impact_ktd.png" \
+  $sweep | tee "$out/impact_ktd.txt"
+echo "== The compaction the law sees behind the transverse kink (10 us)"
+for run in fe_table1 fe_identified; do
+  echo "-- $run"
+  /usr/bin/python3 scripts/fe_kink_compaction.py "$out/$run/fe_0010.0.vtu" \
+    "$out/$run/fe_0000.0.vtu" | tail -1
+done | tee "$out/kink.txt"
