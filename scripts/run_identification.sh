@@ -56,9 +56,9 @@ echo "== Against the DEM ($dem)"
 /usr/bin/python3 scripts/compare_identified.py "$dem" "$out/impact.png" \
   "Table 1=$out/fe_table1/history_fe.csv" \
   "identified=$out/fe_identified/history_fe.csv" | tee "$out/impact.txt"
-echo "== How soft must the section be? Table 1 with k_td = 65 and 6.5 MPa"
+echo "== How soft must the section be? Table 1 with k_td = 65, 20 and 6.5 MPa"
 sweep=""
-for ktd in 65e6 6.5e6; do
+for ktd in 65e6 20e6 6.5e6; do
   dir=$out/fe_table1_ktd_$ktd
   rm -rf "$dir"
   { sed "s#set Directory .*=.*#set Directory = $dir#" prm/km2_120ms_fe.prm

@@ -47,6 +47,15 @@ namespace YarnImpact
     {
       constexpr double PI = 3.14159265358979323846;
 
+      /** The separation @p dx along the periodic axis of length @p L taken
+       * to the nearest image; |dx| < 1.5 L here (the same result as
+       * dx - L round(dx/L), without the call). */
+      inline double
+      nearest_image(const double dx, const double L)
+      {
+        return dx > 0.5 * L ? dx - L : (dx < -0.5 * L ? dx + L : dx);
+      }
+
       /** A rigid wall normal to y or z: a plate (y) or a side wall (z). */
       struct Wall
       {
@@ -396,7 +405,7 @@ namespace YarnImpact
                       if (j == i)
                         continue;
                       double ex = x[3 * j] - x[3 * i];
-                      ex -= Lx * std::round(ex / Lx);
+                      ex = nearest_image(ex, Lx);
                       const double ey = x[3 * j + 1] - x[3 * i + 1],
                                    ez = x[3 * j + 2] - x[3 * i + 2];
                       if (ex * ex + ey * ey + ez * ez < c2)
@@ -488,7 +497,7 @@ namespace YarnImpact
               {
                 const std::size_t j = neighbour[p];
                 double ex           = x[3 * i] - x[3 * j];
-                ex -= Lx * std::round(ex / Lx);
+                ex = nearest_image(ex, Lx);
                 const double ey = x[3 * i + 1] - x[3 * j + 1],
                              ez = x[3 * i + 2] - x[3 * j + 2];
                 const double r2 = ex * ex + ey * ey + ez * ez;
@@ -673,7 +682,7 @@ namespace YarnImpact
                 {
                   const std::size_t jj = neighbour[p];
                   double ex            = x[3 * i] - x[3 * jj];
-                  ex -= Lx * std::round(ex / Lx);
+                  ex = nearest_image(ex, Lx);
                   const double ey = x[3 * i + 1] - x[3 * jj + 1],
                                ez = x[3 * i + 2] - x[3 * jj + 2];
                   const double dist = std::sqrt(ex * ex + ey * ey + ez * ez);
