@@ -18,6 +18,7 @@ for axial in 100 200 400; do
 set Symmetry = quarter
 subsection Output
   set Directory         = $dir
+  set Overwrite         = true
   set Snapshot interval = 0
   set Verbosity         = quiet
 end

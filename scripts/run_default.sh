@@ -6,7 +6,9 @@ cd "$(dirname "$0")/.."
 # ParaView's pvbatch (with xvfb, no display needed) renders the pictures.
 bash scripts/setup.sh paraview python3-paraview xvfb xauth
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-# The default case runs both models; the DEM part uses every core.
+# The default case runs both models; the DEM part uses every core. A rerun
+# starts afresh (yarn-impact refuses a folder holding an earlier run).
+rm -rf results/default
 mpirun -np "$(nproc)" build/yarn-impact prm/default.prm
 # Pictures of the yarns (the paper's Fig. 3-5) from the VTU output.
 bash scripts/make_figures.sh results/default results/default/figures

@@ -14,6 +14,10 @@ np=$(nproc)
 # Section 1 and 3: the paper's study with its figures (skipped if done).
 [ -f results/default/summary.txt ] || bash scripts/run_default.sh
 
+# The study's own runs start afresh (yarn-impact refuses a folder holding an
+# earlier run); the default case above is kept.
+rm -rf results/fe_study results/dem_study
+
 # Section 2: the FE model alone, Charmetant and linear law, refined section;
 # section 1: the FE density from the fibres (runs C, D, E, B).
 for run in fe_hyper fe_linear fe_hyperdens fe_hyper_section; do

@@ -8,11 +8,17 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace YarnImpact
 {
@@ -39,6 +45,16 @@ namespace YarnImpact
       return result;
     }
 
+    /** @p text with its first letter in lower case (system messages). */
+    std::string
+    lower_first(std::string text)
+    {
+      if (!text.empty())
+        text[0] =
+          static_cast<char>(std::tolower(static_cast<unsigned char>(text[0])));
+      return text;
+    }
+
     const char *usage =
       "Usage: yarn-impact [--check] FILE.prm | --print-parameters | --help\n"
       "\n"
@@ -52,38 +68,137 @@ namespace YarnImpact
       "                       unit and documentation\n"
       "  --help               this text\n";
 
-    /** Create the output directory and make sure it is writable. */
-    void
-    prepare_output_directory(const std::string &directory, const bool is_root)
+    /**
+     * Whether @p name is one of the files a run writes into Output/Directory
+     * (parameters, summary, history, snapshots of either model, the model
+     * comparison and its plots, elementary-test curves). Only these are
+     * taken as an earlier run's output, and only these are removed with
+     * Output/Overwrite: a user's own files in the directory are left alone.
+     */
+    bool
+    is_run_output(const std::string &name)
     {
-      bool ok = true;
-      std::string reason;
+      const auto starts = [&](const std::string &prefix) {
+        return name.compare(0, prefix.size(), prefix) == 0;
+      };
+      const auto ends = [&](const std::string &suffix) {
+        return name.size() >= suffix.size() &&
+               name.compare(name.size() - suffix.size(),
+                            suffix.size(),
+                            suffix) == 0;
+      };
+      return name == "parameters.prm" || name == "summary.txt" ||
+             name == "comparison.csv" || name == "velocity_comparison.png" ||
+             name == "wave_fronts.png" ||
+             (starts("history_") && ends(".csv")) ||
+             (starts("elementary_") &&
+              (ends(".csv") || ends(".csv.partial"))) ||
+             ends(".pvd") || ends(".pvtu") || ends(".vtu");
+    }
+
+    /**
+     * Make Output/Directory ready for a run before anything is written:
+     * refuse an input file the run would overwrite with its parameters.prm;
+     * refuse a directory that holds an earlier run's output (runs must not
+     * mix), or with Output/Overwrite remove that output; create the
+     * directory and make sure it is writable. Decided on rank 0 (one file
+     * system view, one message) and broadcast; throws InputError on every
+     * rank.
+     */
+    void
+    prepare_output_directory(const Parameters::Output &output,
+                             const std::string &input_file,
+                             const bool is_root,
+                             std::ostream &out)
+    {
+      namespace fs             = std::filesystem;
+      const std::string &dir   = output.directory;
+      const std::string quoted = "Parameter 'Output/Directory' = '" + dir + "'";
+      std::string error;
       if (is_root)
         {
           std::error_code ec;
-          std::filesystem::create_directories(directory, ec);
-          if (ec)
+          const std::string resolved = dir + "/parameters.prm";
+          std::vector<std::string> earlier;
+          if (fs::equivalent(input_file, resolved, ec))
+            error = quoted + " would overwrite the parameter file '" +
+                    input_file +
+                    "' with the run's parameters.prm: move the file or "
+                    "choose another directory.";
+          else if (fs::is_directory(dir, ec))
             {
-              ok     = false;
-              reason = ec.message();
+              for (fs::directory_iterator it(dir, ec), last; !ec && it != last;
+                   it.increment(ec))
+                if (!it->is_directory(ec) &&
+                    is_run_output(it->path().filename().string()))
+                  earlier.push_back(it->path().filename().string());
+              if (ec)
+                error = quoted + " cannot be used for output (" +
+                        lower_first(ec.message()) + ").";
             }
-          else
+          // The files that tell which run it was first.
+          const auto rank = [](const std::string &name) {
+            return name == "parameters.prm"              ? 0
+                   : name == "summary.txt"               ? 1
+                   : name.compare(0, 8, "history_") == 0 ? 2
+                                                         : 3;
+          };
+          std::sort(earlier.begin(),
+                    earlier.end(),
+                    [&](const std::string &a, const std::string &b) {
+                      return std::make_pair(rank(a), a) <
+                             std::make_pair(rank(b), b);
+                    });
+          if (error.empty() && !earlier.empty() && !output.overwrite)
             {
-              const std::string probe = directory + "/.yarn-impact-probe";
-              std::ofstream f(probe);
-              ok = static_cast<bool>(f << "probe");
-              f.close();
-              std::filesystem::remove(probe, ec);
-              if (!ok)
-                reason = "not writable";
+              std::string found;
+              for (unsigned int i = 0; i < earlier.size() && i < 3; ++i)
+                found += (i > 0 ? ", " : "") + earlier[i];
+              if (earlier.size() > 3)
+                found += " and " + std::to_string(earlier.size() - 3) + " more";
+              error = quoted + " holds the output of an earlier run (" +
+                      std::to_string(earlier.size()) + " files: " + found +
+                      "): choose another directory, remove it, or set "
+                      "Output/Overwrite = true to replace that output.";
+            }
+          else if (error.empty() && !earlier.empty())
+            {
+              for (const auto &name : earlier)
+                if (!fs::remove(dir + "/" + name, ec) && ec)
+                  {
+                    error = quoted + ": cannot remove '" + dir + "/" + name +
+                            "' of an earlier run (" +
+                            lower_first(ec.message()) + ").";
+                    break;
+                  }
+              // Test verbosity prints only what every run prints alike.
+              if (error.empty() &&
+                  output.verbosity != Parameters::Verbosity::test)
+                out << "Output/Overwrite: removed the " << earlier.size()
+                    << " output files of an earlier run from '" << dir << "'\n";
+            }
+          if (error.empty())
+            {
+              fs::create_directories(dir, ec);
+              if (ec)
+                error = quoted + " cannot be used for output (" +
+                        lower_first(ec.message()) + ").";
+              else
+                {
+                  const std::string probe = dir + "/.yarn-impact-probe";
+                  std::ofstream f(probe);
+                  const bool ok = static_cast<bool>(f << "probe");
+                  f.close();
+                  fs::remove(probe, ec);
+                  if (!ok)
+                    error = quoted + " cannot be used for output (not "
+                                     "writable).";
+                }
             }
         }
-      const bool all_ok = Utilities::MPI::min(ok ? 1 : 0, MPI_COMM_WORLD) == 1;
-      Parameters::require(all_ok,
-                          "Output/Directory",
-                          "= '" + directory + "' cannot be used for output (" +
-                            (reason.empty() ? "failed on rank 0" : reason) +
-                            ")");
+      error = Utilities::MPI::broadcast(MPI_COMM_WORLD, error, 0);
+      if (!error.empty())
+        throw InputError(error);
     }
 
     std::unique_ptr<ImpactModel>
@@ -112,11 +227,10 @@ namespace YarnImpact
     fe.parse_parameters(prm);
     dem.parse_parameters(prm);
     elementary.parse_parameters(prm);
-    Parameters::require(
-      elementary.loading == DEM::ElementaryLoading::none ||
-        shared.general.model == Parameters::ModelType::dem,
-      "Elementary test/Loading",
-      "is a loading of the DEM model: it needs Model = dem");
+    Parameters::require(elementary.loading == DEM::ElementaryLoading::none ||
+                          shared.general.model == Parameters::ModelType::dem,
+                        "Elementary test/Loading",
+                        "is a loading of the DEM model: it needs Model = dem");
     if (shared.general.model != Parameters::ModelType::dem)
       FE::validate(shared, fe);
   }
@@ -125,9 +239,21 @@ namespace YarnImpact
   read_parameters(const std::string &file, ParameterHandler &prm)
   {
     {
+      // Checked before opening: deal.II reads a directory as an empty file
+      // (the default case would run), and opening a fifo blocks.
+      const std::string what = "cannot open the parameter file '" + file + "'";
+      std::error_code ec;
+      const auto status = std::filesystem::status(file, ec);
+      if (ec)
+        throw InputError(what + ": " + lower_first(ec.message()) + ".");
+      if (std::filesystem::is_directory(status))
+        throw InputError(what + ": it is a directory.");
+      if (!std::filesystem::is_regular_file(status))
+        throw InputError(what + ": it is not a regular file (a fifo, socket or "
+                                "device).");
       std::ifstream in(file);
       if (!in)
-        throw InputError("cannot open the parameter file '" + file + "'.");
+        throw InputError(what + ": " + lower_first(std::strerror(errno)) + ".");
     }
     try
       {
@@ -202,7 +328,7 @@ namespace YarnImpact
           }
 
         const auto &output = parameters.shared.output;
-        prepare_output_directory(output.directory, is_root);
+        prepare_output_directory(output, file, is_root, out);
         if (is_root)
           {
             std::ofstream resolved(output.directory + "/parameters.prm");
@@ -211,12 +337,11 @@ namespace YarnImpact
 
         if (parameters.elementary.loading != DEM::ElementaryLoading::none)
           {
-            const bool passed =
-              DEM::run_elementary_test(parameters.shared,
-                                       parameters.dem,
-                                       parameters.elementary,
-                                       MPI_COMM_WORLD,
-                                       out);
+            const bool passed = DEM::run_elementary_test(parameters.shared,
+                                                         parameters.dem,
+                                                         parameters.elementary,
+                                                         MPI_COMM_WORLD,
+                                                         out);
             if (!passed)
               {
                 if (is_root)

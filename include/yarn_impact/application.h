@@ -36,7 +36,9 @@ namespace YarnImpact
   /**
    * Read @p file into @p prm (declared with AllParameters) and parse it.
    * Parse errors of deal.II are turned into one-line InputError messages
-   * that name the file line and the entry.
+   * that name the file line and the entry. A @p file that is not a readable
+   * regular file (missing, a directory, a fifo, unreadable) is refused with
+   * an InputError naming it and the cause, before anything is read.
    */
   AllParameters
   read_parameters(const std::string &file, dealii::ParameterHandler &prm);

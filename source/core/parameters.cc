@@ -247,7 +247,16 @@ namespace YarnImpact
                         Patterns::Anything(),
                         "Directory that receives parameters.prm, the history "
                         "CSV, the VTU snapshots and the summary; created if "
-                        "missing.");
+                        "missing. A directory that holds the output of an "
+                        "earlier run (parameters.prm, summary.txt, history, "
+                        "snapshots, comparison or elementary-test files) is "
+                        "refused unless Overwrite is true.");
+      prm.declare_entry("Overwrite",
+                        "false",
+                        Patterns::Bool(),
+                        "true: before the run, remove the files of an earlier "
+                        "run from Directory (only the kinds of files a run "
+                        "writes, never others) instead of refusing it.");
       prm.declare_entry("Snapshot interval",
                         "1e-6",
                         Patterns::Double(),
@@ -278,6 +287,7 @@ namespace YarnImpact
       prm.enter_subsection("Output");
       directory = prm.get("Directory");
       require(!directory.empty(), "Output/Directory", "must not be empty");
+      overwrite         = prm.get_bool("Overwrite");
       snapshot_interval = prm.get_double("Snapshot interval");
       require(snapshot_interval >= 0.,
               "Output/Snapshot interval",

@@ -20,6 +20,9 @@ expect()
     echo "end"
   } > "$dir/$name.prm"
   local out
+  # A set-up refused after the output directory was prepared leaves its
+  # parameters.prm there; each case starts from an empty folder.
+  rm -rf "$dir/run"
   out=$("$exe" "$dir/$name.prm" 2>&1)
   local rc=$?
   if [ $rc -eq 0 ] || ! grep -q -- "$text" <<< "$out" ||

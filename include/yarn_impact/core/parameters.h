@@ -149,6 +149,12 @@ namespace YarnImpact
     {
       /** Directory that receives all output; created if missing. */
       std::string directory = "results";
+      /**
+       * Whether a run may replace the output of an earlier run in
+       * #directory (its files of the kinds a run writes are removed
+       * first); without it such a directory is refused.
+       */
+      bool overwrite = false;
       /** Simulated time between VTU snapshots [s]; 0 disables them. */
       double snapshot_interval = 1e-6;
       /** Simulated time between history rows [s]. */
