@@ -102,7 +102,7 @@ def main():
         ax[1].plot(r["t"], r["width"] / r["width"][0], label=label)
         ax[2].plot(r["t"], r["spreading"], label=label)
     ax[0].set_ylabel("projectile velocity [m/s]")
-    ax[1].set_ylabel("section width at the impact point / initial [-]")
+    ax[1].set_ylabel("width 4 sqrt(<z^2>) at the impact point / initial [-]")
     ax[2].set_ylabel("spreading front [mm]")
     for a in ax:
         a.set_xlabel("t [us]")

@@ -19,26 +19,36 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 out=results/identification
 mkdir -p "$out"
 # The segment is small (1600 spheres): one rank per test is faster than a
-# split, so the distortion test (the longest) runs beside the others.
+# split, so the tests run in two lanes on two cores, the distortion test
+# split into one run per confining pressure.
 run_case() {
-  local case=$1 dir=$out/$1
+  local case=$1 prm=$2 dir=$out/$1
   rm -rf "$dir"
-  sed "s#set Directory = .*#set Directory = $dir#" \
-    prm/elementary/$case.prm > "$out/$case.prm"
+  sed "s#set Directory = .*#set Directory = $dir#" "$prm" > "$out/$case.prm"
   local start=$(date +%s)
   build/yarn-impact "$out/$case.prm" > "$out/$case.log" 2>&1 || true
   echo "   ($case: $(( $(date +%s) - start )) s)" >> "$out/$case.log"
 }
-echo "== DEM elementary tests (logs in $out/*.log)"
-run_case distortion &
-for case in tension compaction compaction_confined; do
-  run_case $case
+for pc in 2e6 10e6 50e6; do
+  sed "s/set Confining pressures .*=.*/set Confining pressures    = $pc/" \
+    prm/elementary/distortion.prm > "$out/distortion_$pc.in.prm"
 done
+echo "== DEM elementary tests (logs in $out/*.log)"
+{ run_case distortion_50e6 "$out/distortion_50e6.in.prm"
+  run_case distortion_10e6 "$out/distortion_10e6.in.prm"; } &
+for case in tension compaction compaction_confined; do
+  run_case $case prm/elementary/$case.prm
+done
+run_case distortion_2e6 "$out/distortion_2e6.in.prm"
 wait
-for case in tension compaction compaction_confined distortion; do
+for case in tension compaction compaction_confined distortion_2e6 \
+            distortion_10e6 distortion_50e6; do
   grep -v '^\[' "$out/$case.log"
 done
-csvs="$out/tension/elementary_tension.csv $out/compaction/elementary_compaction.csv $out/compaction_confined/elementary_compaction.csv $out/distortion/elementary_distortion.csv"
+csvs="$out/tension/elementary_tension.csv $out/compaction/elementary_compaction.csv $out/compaction_confined/elementary_compaction.csv"
+for pc in 2e6 10e6 50e6; do
+  csvs="$csvs $out/distortion_$pc/elementary_distortion.csv"
+done
 echo "== Fit"
 /usr/bin/python3 scripts/identify_charmetant.py --each \
   --prm "$out/km2_120ms_fe_identified.prm" \
