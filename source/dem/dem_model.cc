@@ -549,18 +549,9 @@ namespace YarnImpact
           finv.push_back(1. / (sphere_mass * fw[f]));
         cutoff = d + prm.skin;
 
-        // Contact laws (doc/dem.md): c = 2 zeta sqrt(m_eff k).
-        fibre_law.k_n = prm.normal_stiffness_ratio * truss_k;
-        fibre_law.c_n =
-          2. * prm.damping_ratio * std::sqrt(0.5 * sphere_mass * fibre_law.k_n);
-        fibre_law.k_t      = prm.tangential_stiffness_ratio * fibre_law.k_n;
-        fibre_law.mu       = prm.friction;
-        projectile_law.k_n = prm.projectile_stiffness_ratio * truss_k;
-        projectile_law.c_n = 2. * prm.projectile_damping_ratio *
-                             std::sqrt(sphere_mass * projectile_law.k_n);
-        projectile_law.k_t =
-          prm.tangential_stiffness_ratio * projectile_law.k_n;
-        projectile_law.mu = prm.projectile_friction;
+        // Contact laws (doc/dem.md section 2).
+        fibre_law      = fibre_contact_law(prm, truss_k, sphere_mass);
+        projectile_law = projectile_contact_law(prm, truss_k, sphere_mass);
 
         // Stable step (doc/theory.md 3.2): Gershgorin bound of a sphere with
         // two trusses, `coordination` fibre contacts and the projectile,

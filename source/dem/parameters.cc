@@ -3,6 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cmath>
+
 namespace YarnImpact
 {
   namespace DEM
@@ -223,6 +225,33 @@ namespace YarnImpact
                          ? ListRebuilds::missed_contact
                          : ListRebuilds::criterion);
       prm.leave_subsection();
+    }
+    ContactLaw
+    fibre_contact_law(const Parameters &prm,
+                      const double truss_k,
+                      const double sphere_mass)
+    {
+      ContactLaw law;
+      law.k_n = prm.normal_stiffness_ratio * truss_k;
+      law.c_n = 2. * prm.damping_ratio * std::sqrt(0.5 * sphere_mass * law.k_n);
+      law.k_t = prm.tangential_stiffness_ratio * law.k_n;
+      law.mu  = prm.friction;
+      return law;
+    }
+
+
+    ContactLaw
+    projectile_contact_law(const Parameters &prm,
+                           const double truss_k,
+                           const double sphere_mass)
+    {
+      ContactLaw law;
+      law.k_n = prm.projectile_stiffness_ratio * truss_k;
+      law.c_n =
+        2. * prm.projectile_damping_ratio * std::sqrt(sphere_mass * law.k_n);
+      law.k_t = prm.tangential_stiffness_ratio * law.k_n;
+      law.mu  = prm.projectile_friction;
+      return law;
     }
   } // namespace DEM
 } // namespace YarnImpact

@@ -89,14 +89,10 @@ namespace YarnImpact
         // The impact model's laws (doc/dem.md sections 2 and 3); the walls have
         // the projectile's normal law and no friction, so that they do not
         // hold the section back.
-        fibre_law.k_n = dem.normal_stiffness_ratio * truss_k;
-        fibre_law.c_n =
-          2. * dem.damping_ratio * std::sqrt(0.5 * mass * fibre_law.k_n);
-        fibre_law.k_t = dem.tangential_stiffness_ratio * fibre_law.k_n;
-        fibre_law.mu  = dem.friction;
-        wall_law.k_n  = dem.projectile_stiffness_ratio * truss_k;
-        wall_law.c_n =
-          2. * dem.projectile_damping_ratio * std::sqrt(mass * wall_law.k_n);
+        fibre_law    = fibre_contact_law(dem, truss_k, mass);
+        wall_law     = projectile_contact_law(dem, truss_k, mass);
+        wall_law.k_t = 0.;
+        wall_law.mu  = 0.;
 
         // The impact model's stable step: two trusses, `coordination`
         // contacts and a wall per sphere.
@@ -542,26 +538,7 @@ namespace YarnImpact
                 }
             m[9] = dissipated[li];
           }
-        std::vector<double> all(K * n);
-        if (n_ranks == 1)
-          all = mine;
-        else
-          {
-            std::vector<int> c(n_ranks), o(n_ranks);
-            for (unsigned int q = 0; q < n_ranks; ++q)
-              {
-                c[q] = counts[q] / 6 * K;
-                o[q] = offsets[q] / 6 * K;
-              }
-            MPI_Allgatherv(mine.data(),
-                           static_cast<int>(mine.size()),
-                           MPI_DOUBLE,
-                           all.data(),
-                           c.data(),
-                           o.data(),
-                           MPI_DOUBLE,
-                           comm);
-          }
+        const std::vector<double> all = gather(mine, K, false);
         Sums S;
         for (std::size_t i = 0; i < n; ++i)
           {
@@ -650,15 +627,29 @@ namespace YarnImpact
       {
         if (n_ranks == 1)
           return fibre_break;
-        std::vector<double> mine(fibre_break.begin() + f_begin,
-                                 fibre_break.begin() + f_end),
-          all(nf);
+        return gather(std::vector<double>(fibre_break.begin() + f_begin,
+                                          fibre_break.begin() + f_end),
+                      1,
+                      true);
+      }
+
+
+      std::vector<double>
+      PeriodicSegment::gather(const std::vector<double> &mine,
+                              const unsigned int per,
+                              const bool per_fibre) const
+      {
+        if (n_ranks == 1)
+          return mine;
+        // counts and offsets are in doubles of 6 per sphere.
+        const unsigned int items = 6 * (per_fibre ? ns : 1);
         std::vector<int> c(n_ranks), o(n_ranks);
         for (unsigned int q = 0; q < n_ranks; ++q)
           {
-            c[q] = counts[q] / 6 / ns;
-            o[q] = offsets[q] / 6 / ns;
+            c[q] = counts[q] / items * per;
+            o[q] = offsets[q] / items * per;
           }
+        std::vector<double> all((per_fibre ? nf : n) * per);
         MPI_Allgatherv(mine.data(),
                        static_cast<int>(mine.size()),
                        MPI_DOUBLE,

@@ -3,6 +3,7 @@
 
 #include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/parameters.h>
+#include <yarn_impact/dem/contact_law.h>
 
 #include <mpi.h>
 
@@ -103,6 +104,26 @@ namespace YarnImpact
       void
       parse_parameters(dealii::ParameterHandler &prm);
     };
+
+    /**
+     * The fibre-fibre contact law of @p prm between spheres of mass
+     * @p sphere_mass [kg] whose trusses have the stiffness @p truss_k
+     * [N/m]: normal penalty and damping (c = 2 zeta sqrt(m_eff k), m_eff =
+     * m/2), tangential spring and Coulomb friction (doc/dem.md section 2).
+     * The impact model and the elementary tests use this one law.
+     */
+    ContactLaw
+    fibre_contact_law(const Parameters &prm,
+                      const double truss_k,
+                      const double sphere_mass);
+
+    /** The projectile-fibre contact law of @p prm (m_eff = m), as
+     * fibre_contact_law(); the elementary tests' rigid walls use its normal
+     * part. */
+    ContactLaw
+    projectile_contact_law(const Parameters &prm,
+                           const double truss_k,
+                           const double sphere_mass);
 
     /** Create the DEM model of the yarn described by @p shared. */
     std::unique_ptr<ImpactModel>

@@ -135,6 +135,13 @@ namespace YarnImpact
         unsigned long n_rebuilds = 0;
 
       private:
+        /** @p mine, @p per values for each own sphere (or each own fibre
+         * with @p per_fibre), gathered from all ranks in sphere (fibre)
+         * order, so that sums over it do not depend on the ranks. */
+        std::vector<double>
+        gather(const std::vector<double> &mine,
+               const unsigned int per,
+               const bool per_fibre) const;
         void
         exchange();
         void
