@@ -231,8 +231,18 @@ namespace YarnImpact
                           shared.general.model == Parameters::ModelType::dem,
                         "Elementary test/Loading",
                         "is a loading of the DEM model: it needs Model = dem");
-    if (shared.general.model != Parameters::ModelType::dem)
-      FE::validate(shared, fe);
+    // Every set-up check that needs no MPI ranks is made here, so that
+    // `--check` refuses what the run would, and a run refuses before it
+    // writes anything (with Model = both, before the FE part runs).
+    if (elementary.loading != DEM::ElementaryLoading::none)
+      DEM::validate(shared, dem, true);
+    else
+      {
+        if (shared.general.model != Parameters::ModelType::dem)
+          FE::validate(shared, fe);
+        if (shared.general.model != Parameters::ModelType::fe)
+          DEM::validate(shared, dem);
+      }
   }
 
   AllParameters

@@ -6,6 +6,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace YarnImpact
 {
@@ -442,6 +443,23 @@ namespace YarnImpact
       require(projectile.diameter < yarn.length,
               "Projectile/Diameter",
               "must be smaller than Yarn/Length");
+      // The window quantities are measured up to the end of the run: a
+      // window past Time/End time would be found out only after the whole
+      // run, as a failed check on a truncated (or empty) window. The energy
+      // check does not use the window.
+      const auto &v = verification;
+      if (v.check_deceleration || v.check_plateau_strain ||
+          v.check_longitudinal_speed || v.check_transverse_speed)
+        {
+          std::ostringstream s;
+          s << "= " << v.window_end
+            << " s is after Time/End time = " << time.end_time
+            << " s: the checks of Verification/Checks measure in the window, "
+               "which must end by the end of the run";
+          require(v.window_end <= time.end_time * (1. + 1e-12),
+                  "Verification/Window end",
+                  s.str());
+        }
     }
   } // namespace Parameters
 } // namespace YarnImpact

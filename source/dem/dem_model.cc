@@ -473,41 +473,10 @@ namespace YarnImpact
         const auto &y = shared.yarn;
         d             = y.fibre_diameter;
         radius        = 0.5 * d;
-        require(prm.sphere_spacing <= d * (1. + 1e-12),
-                "DEM/Sphere spacing",
-                "must not exceed Yarn/Fibre diameter: larger gaps would let "
-                "fibres pass between the spheres of another fibre");
-
-        // Fibre centres.
-        FibreCentres centres = (prm.layout == FibreLayout::file
-                                  ? read_fibre_file(prm.fibre_file,
-                                                    y.n_fibres,
-                                                    d,
-                                                    y.thickness_semi_axis,
-                                                    y.width_semi_axis)
-                                  : hexagonal_packing(y.n_fibres,
-                                                      d,
-                                                      y.thickness_semi_axis,
-                                                      y.width_semi_axis,
-                                                      prm.max_packing_scale,
-                                                      z_sym));
-        packing_scale        = centres.scale;
-        nf_whole             = centres.size();
-        if (z_sym)
-          {
-            // The layout must be its own mirror image in z = 0.
-            for (unsigned int a = 0; a < nf_whole; ++a)
-              {
-                bool mirrored = (centres.z[a] == 0.);
-                for (unsigned int b = 0; b < nf_whole && !mirrored; ++b)
-                  mirrored = std::abs(centres.y[b] - centres.y[a]) < 1e-9 * d &&
-                             std::abs(centres.z[b] + centres.z[a]) < 1e-9 * d;
-                require(mirrored,
-                        "Symmetry",
-                        "= quarter needs fibre centres symmetric about z = 0, "
-                        "but the layout is not (use Symmetry = half)");
-              }
-          }
+        // Fibre centres, checked as by validate() (also run at parsing).
+        const FibreCentres centres = fibre_centres(shared, prm, z_sym);
+        packing_scale              = centres.scale;
+        nf_whole                   = centres.size();
         for (unsigned int a = 0; a < nf_whole; ++a)
           if (!z_sym || centres.z[a] >= 0.)
             {

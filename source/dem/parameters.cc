@@ -226,6 +226,64 @@ namespace YarnImpact
                          : ListRebuilds::criterion);
       prm.leave_subsection();
     }
+    FibreCentres
+    fibre_centres(const YarnImpact::Parameters::Shared &shared,
+                  const Parameters &parameters,
+                  const bool symmetric_z)
+    {
+      using YarnImpact::Parameters::require;
+      const auto &y  = shared.yarn;
+      const double d = y.fibre_diameter;
+      require(parameters.sphere_spacing <= d * (1. + 1e-12),
+              "DEM/Sphere spacing",
+              "must not exceed Yarn/Fibre diameter: larger gaps would let "
+              "fibres pass between the spheres of another fibre");
+      FibreCentres centres =
+        (parameters.layout == FibreLayout::file
+           ? read_fibre_file(parameters.fibre_file,
+                             y.n_fibres,
+                             d,
+                             y.thickness_semi_axis,
+                             y.width_semi_axis)
+           : hexagonal_packing(y.n_fibres,
+                               d,
+                               y.thickness_semi_axis,
+                               y.width_semi_axis,
+                               parameters.max_packing_scale,
+                               symmetric_z));
+      if (symmetric_z)
+        {
+          // The layout must be its own mirror image in z = 0.
+          const unsigned int n = centres.size();
+          for (unsigned int a = 0; a < n; ++a)
+            {
+              bool mirrored = (centres.z[a] == 0.);
+              for (unsigned int b = 0; b < n && !mirrored; ++b)
+                mirrored = std::abs(centres.y[b] - centres.y[a]) < 1e-9 * d &&
+                           std::abs(centres.z[b] + centres.z[a]) < 1e-9 * d;
+              require(mirrored,
+                      "Symmetry",
+                      "= quarter needs fibre centres symmetric about z = 0, "
+                      "but the layout is not (use Symmetry = half)");
+            }
+        }
+      return centres;
+    }
+
+
+    void
+    validate(const YarnImpact::Parameters::Shared &shared,
+             const Parameters &parameters,
+             const bool elementary_test)
+    {
+      fibre_centres(shared,
+                    parameters,
+                    !elementary_test &&
+                      shared.general.symmetry ==
+                        YarnImpact::Parameters::Symmetry::quarter);
+    }
+
+
     ContactLaw
     fibre_contact_law(const Parameters &prm,
                       const double truss_k,

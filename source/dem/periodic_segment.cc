@@ -51,22 +51,9 @@ namespace YarnImpact
         const auto &y = shared.yarn;
         d             = y.fibre_diameter;
         radius        = 0.5 * d;
-        require(dem.sphere_spacing <= d * (1. + 1e-12),
-                "DEM/Sphere spacing",
-                "must not exceed Yarn/Fibre diameter: larger gaps would let "
-                "fibres pass between the spheres of another fibre");
-        const FibreCentres centres =
-          (dem.layout == FibreLayout::file ?
-             read_fibre_file(dem.fibre_file,
-                             y.n_fibres,
-                             d,
-                             y.thickness_semi_axis,
-                             y.width_semi_axis) :
-             hexagonal_packing(y.n_fibres,
-                               d,
-                               y.thickness_semi_axis,
-                               y.width_semi_axis,
-                               dem.max_packing_scale));
+        // Checked as by validate() (also run at parsing); the segment
+        // ignores Symmetry.
+        const FibreCentres centres = fibre_centres(shared, dem, false);
         packing_scale = centres.scale;
         nf            = centres.size();
         ns            = test.stations;

@@ -4,6 +4,7 @@
 #include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/dem/contact_law.h>
+#include <yarn_impact/dem/packing.h>
 
 #include <mpi.h>
 
@@ -104,6 +105,38 @@ namespace YarnImpact
       void
       parse_parameters(dealii::ParameterHandler &prm);
     };
+
+    /**
+     * The fibre centres of the yarn described by @p shared and @p parameters
+     * (hexagonal packing or fibre file), after the checks that need no MPI
+     * ranks: the sphere spacing against the fibre diameter, a packing that
+     * fits (or a fibre file that can be read, holds Yarn/Number of fibres
+     * centres and no overlap) and, with @p symmetric_z (quarter symmetry), a
+     * layout that is its own mirror image in z = 0. The impact model, the
+     * elementary tests and validate() share it, so that each check is written
+     * once and `--check` refuses what the run refuses.
+     * @throw InputError naming the parameter or the file
+     */
+    FibreCentres
+    fibre_centres(const YarnImpact::Parameters::Shared &shared,
+                  const Parameters &parameters,
+                  const bool symmetric_z);
+
+    /**
+     * Check the DEM set-up against the shared parameters before anything is
+     * written (called while the parameters are parsed, so also by
+     * `--check`): fibre_centres() for the impact model, with quarter
+     * symmetry when Symmetry = quarter, or, with @p elementary_test, for the
+     * periodic segment of the elementary tests, which ignores Symmetry.
+     * Builds the fibre centres only (milliseconds), not the spheres. The
+     * check that depends on the number of MPI ranks (ghost stations against
+     * slabs) is left to the model.
+     * @throw InputError naming the parameter or the file
+     */
+    void
+    validate(const YarnImpact::Parameters::Shared &shared,
+             const Parameters &parameters,
+             const bool elementary_test = false);
 
     /**
      * The fibre-fibre contact law of @p prm between spheres of mass
