@@ -27,7 +27,9 @@ namespace YarnImpact
         "(doc/identification.md). tension: stretched along the fibres; "
         "compaction: squeezed between rigid frictionless plates normal to "
         "y, free in z, then unloaded; distortion: the same under each "
-        "confining pressure in z, held by servo-controlled side walls.");
+        "confining pressure in z, held by servo-controlled side walls. "
+        "An elementary test does not use Symmetry, Yarn/Length, Projectile "
+        "or Time other than Time/Safety factor.");
       prm.declare_entry("Cross-sections",
                         "4",
                         Patterns::Integer(),
