@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -110,6 +111,10 @@ namespace YarnImpact
     RunSummary
     run();
 
+    /** The run, timed by @p timer. */
+    RunSummary
+    run_timed(TimerOutput &timer);
+
     HistoryRow
     make_row(const double time,
              const unsigned long step,
@@ -176,19 +181,48 @@ namespace YarnImpact
   RunSummary
   ImpactSimulation::Implementation::run()
   {
+    const bool verbose =
+      parameters.output.verbosity == Parameters::Verbosity::normal;
+    std::ostringstream timer_sink;
+    std::exception_ptr failure;
+    RunSummary summary;
+    {
+      TimerOutput timer(communicator,
+                        verbose ? out.get_stream() : timer_sink,
+                        verbose ? TimerOutput::summary : TimerOutput::never,
+                        TimerOutput::wall_times);
+      try
+        {
+          summary = run_timed(timer);
+        }
+      catch (...)
+        {
+          // A failed run's one-line error must not come after a timing
+          // table, nor after deal.II's note on timers destroyed during an
+          // exception: the timer ends here, silently, and the error is
+          // thrown again after it.
+          failure = std::current_exception();
+          timer.disable_output();
+        }
+    }
+    if (failure)
+      std::rethrow_exception(failure);
+    return summary;
+  }
+
+
+  RunSummary
+  ImpactSimulation::Implementation::run_timed(TimerOutput &timer)
+  {
     const auto &p      = parameters;
     const bool verbose = p.output.verbosity == Parameters::Verbosity::normal;
     const bool testing = p.output.verbosity == Parameters::Verbosity::test;
     Timer wall_timer;
-    std::ostringstream timer_sink;
-    TimerOutput timer(communicator,
-                      verbose ? out.get_stream() : timer_sink,
-                      verbose ? TimerOutput::summary : TimerOutput::never,
-                      TimerOutput::wall_times);
+    std::ostringstream setup_sink;
 
     {
       TimerOutput::Scope scope(timer, "set-up");
-      model->setup(projectile, testing ? timer_sink : out.get_stream());
+      model->setup(projectile, testing ? setup_sink : out.get_stream());
       projectile.place_on(model->yarn_top());
     }
     const std::string name = model->name();
@@ -349,8 +383,8 @@ namespace YarnImpact
             const double eta = last_progress * (end_time - t) / t;
             out << "[" << name << "] t = " << std::fixed << std::setprecision(3)
                 << t * 1e6 << " us, step " << step << ", dt "
-                << std::setprecision(3) << h * 1e9
-                << " ns, v = " << std::setprecision(3)
+                << std::defaultfloat << std::setprecision(4) << h * 1e9
+                << std::fixed << " ns, v = " << std::setprecision(3)
                 << projectile.impact_speed() << " m/s, ETA "
                 << std::setprecision(1) << eta << " s" << std::defaultfloat
                 << std::endl;
