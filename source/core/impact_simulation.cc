@@ -184,11 +184,15 @@ namespace YarnImpact
     const bool verbose =
       parameters.output.verbosity == Parameters::Verbosity::normal;
     std::ostringstream timer_sink;
+    // The timing table once, from rank 0 (a plain stream would have every
+    // rank print it).
+    ConditionalOStream timer_stream(verbose ? out.get_stream() : timer_sink,
+                                    verbose && is_root);
     std::exception_ptr failure;
     RunSummary summary;
     {
       TimerOutput timer(communicator,
-                        verbose ? out.get_stream() : timer_sink,
+                        timer_stream,
                         verbose ? TimerOutput::summary : TimerOutput::never,
                         TimerOutput::wall_times);
       try
@@ -222,7 +226,9 @@ namespace YarnImpact
 
     {
       TimerOutput::Scope scope(timer, "set-up");
-      model->setup(projectile, testing ? setup_sink : out.get_stream());
+      // The set-up report once, from rank 0, whatever the model does.
+      model->setup(projectile,
+                   (testing || !is_root) ? setup_sink : out.get_stream());
       projectile.place_on(model->yarn_top());
     }
     const std::string name = model->name();
