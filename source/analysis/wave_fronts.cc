@@ -9,9 +9,12 @@ namespace YarnImpact
     void
     StationProfile::resize(const unsigned int n)
     {
-      for (auto *v :
-           {&position, &axial_strain, &deflection, &width, &initial_width,
-            &rms_width})
+      for (auto *v : {&position,
+                      &axial_strain,
+                      &deflection,
+                      &width,
+                      &initial_width,
+                      &rms_width})
         v->assign(n, 0.);
     }
 

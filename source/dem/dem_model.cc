@@ -525,14 +525,7 @@ namespace YarnImpact
         // Stable step (doc/theory.md 3.2): Gershgorin bound of a sphere with
         // two trusses, `coordination` fibre contacts and the projectile,
         // reduced for the contact damping.
-        const double omega2 = 2. *
-                              (2. * truss_k + prm.coordination * fibre_law.k_n +
-                               projectile_law.k_n) /
-                              sphere_mass;
-        const double zeta =
-          std::max(prm.damping_ratio, prm.projectile_damping_ratio);
-        critical_step =
-          2. / std::sqrt(omega2) * (std::sqrt(1. + zeta * zeta) - zeta);
+        critical_step = critical_time_step(prm, truss_k, sphere_mass);
 
         total_mass = 0.;
         for (unsigned int f = 0; f < nf; ++f)

@@ -81,7 +81,9 @@ namespace YarnImpact
       class Recorder
       {
       public:
-        Recorder(PeriodicSegment &segment, std::ostream *csv, const std::string &name)
+        Recorder(PeriodicSegment &segment,
+                 std::ostream *csv,
+                 const std::string &name)
           : seg(segment)
           , csv(csv)
           , name(name)
@@ -98,16 +100,16 @@ namespace YarnImpact
           r.time     = seg.time;
           r.strain   = strain;
           seg.affine_gradient(r.F);
-          r.inv            = FE::charmetant_invariants(r.F);
-          const auto m     = seg.second_moments();
-          r.height         = 4. * std::sqrt(m.first);
-          r.width          = 4. * std::sqrt(m.second);
-          r.sums           = seg.sums();
-          const double *w  = r.sums.virial;
-          r.tau[0]         = w[0] / seg.V0;
-          r.tau[1]         = w[1] / seg.V0;
-          r.tau[2]         = w[2] / seg.V0;
-          r.tau[3]         = w[3] / seg.V0;
+          r.inv             = FE::charmetant_invariants(r.F);
+          const auto m      = seg.second_moments();
+          r.height          = 4. * std::sqrt(m.first);
+          r.width           = 4. * std::sqrt(m.second);
+          r.sums            = seg.sums();
+          const double *w   = r.sums.virial;
+          r.tau[0]          = w[0] / seg.V0;
+          r.tau[1]          = w[1] / seg.V0;
+          r.tau[2]          = w[2] / seg.V0;
+          r.tau[3]          = w[3] / seg.V0;
           r.tau_boundary[0] = seg.wall_virial[0] / seg.V0;
           r.tau_boundary[1] = seg.wall_virial[1] / seg.V0;
           const Wall *W     = seg.walls;
@@ -158,16 +160,19 @@ namespace YarnImpact
        * of the wall's contacts, so that it follows a spreading section
        * without a lag error; at most @p v_max [m/s]. */
       void
-      servo(Wall &w, const double force, const double k_n, const double dt,
+      servo(Wall &w,
+            const double force,
+            const double k_n,
+            const double dt,
             const double v_max)
       {
         constexpr double alpha = 0.05; // error closed per step, proportional
-        const double k   = k_n * std::max(1u, w.n_in);
-        const double err = w.load - force;
-        w.integral = std::clamp(w.integral + 0.25 * alpha * alpha * err /
-                                               (k * dt),
-                                -v_max,
-                                v_max);
+        const double k         = k_n * std::max(1u, w.n_in);
+        const double err       = w.load - force;
+        w.integral =
+          std::clamp(w.integral + 0.25 * alpha * alpha * err / (k * dt),
+                     -v_max,
+                     v_max);
         const double v =
           std::clamp(alpha * err / (k * dt) + w.integral, -v_max, v_max);
         w.velocity = w.side * v;
@@ -208,21 +213,20 @@ namespace YarnImpact
           pressure > 0. || t.side_walls == SideWalls::fixed;
         for (unsigned int k = 0; k < (side_walls ? 4u : 2u); ++k)
           {
-            W[k].active   = true;
-            W[k].axis     = 1 + k / 2;
-            W[k].side     = (k % 2 == 0 ? 1. : -1.);
-            W[k].position = seg.extreme(W[k].axis, W[k].side) +
-                            W[k].side * seg.radius;
+            W[k].active = true;
+            W[k].axis   = 1 + k / 2;
+            W[k].side   = (k % 2 == 0 ? 1. : -1.);
+            W[k].position =
+              seg.extreme(W[k].axis, W[k].side) + W[k].side * seg.radius;
           }
-        const double k_n = seg.wall_law.k_n;
+        const double k_n    = seg.wall_law.k_n;
         const double gap_y0 = W[0].position - W[1].position;
         if (pressure > 0.)
           {
             const double gap_z0 = W[2].position - W[3].position;
-            const double v_max =
-              10. * t.strain_rate * std::max(gap_y0, gap_z0);
-            const double t_end  = t.consolidation_time;
-            double next         = 0.;
+            const double v_max = 10. * t.strain_rate * std::max(gap_y0, gap_z0);
+            const double t_end = t.consolidation_time;
+            double next        = 0.;
             while (true)
               {
                 if (seg.time >= next - 1e-15)
@@ -264,10 +268,11 @@ namespace YarnImpact
               {
                 const double elapsed = seg.time - t0;
                 const double strain =
-                  loading ? std::min(t.max_strain, t.strain_rate * elapsed) :
-                            std::max(0., t.max_strain - t.strain_rate * elapsed);
-                const bool done = loading ? strain >= t.max_strain :
-                                            strain <= 0.;
+                  loading
+                    ? std::min(t.max_strain, t.strain_rate * elapsed)
+                    : std::max(0., t.max_strain - t.strain_rate * elapsed);
+                const bool done =
+                  loading ? strain >= t.max_strain : strain <= 0.;
                 if ((loading && strain >= next - 1e-12) ||
                     (!loading && strain <= next + 1e-12) || done)
                   {
@@ -313,11 +318,11 @@ namespace YarnImpact
                         std::ostream &out)
     {
       using YarnImpact::Parameters::Verbosity;
-      const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
+      const bool root    = Utilities::MPI::this_mpi_process(communicator) == 0;
       const bool testing = shared.output.verbosity == Verbosity::test;
       PeriodicSegment seg(shared, dem, test, communicator);
-      const auto &y     = shared.yarn;
-      const double phi  = y.fibre_area() / y.section_area();
+      const auto &y      = shared.yarn;
+      const double phi   = y.fibre_area() / y.section_area();
       const double E_phi = y.fibre_modulus * phi;
 
       std::ostringstream report;
@@ -339,8 +344,8 @@ namespace YarnImpact
             throw RunError("cannot write '" + partial + "'");
           csv << std::setprecision(10) << csv_header << '\n';
         }
-      const std::string name = elementary_test_file(test.loading)
-                                 .substr(11, std::string::npos);
+      const std::string name =
+        elementary_test_file(test.loading).substr(11, std::string::npos);
       Recorder rec(seg, root ? &csv : nullptr, name.substr(0, name.size() - 4));
 
       bool passed = true;
@@ -350,8 +355,8 @@ namespace YarnImpact
         passed = passed && ok;
       };
 
-      report << "Elementary test (" << rec.name << ", " << seg.nf
-             << " fibres, " << seg.ns << " cross-sections, periodic)\n";
+      report << "Elementary test (" << rec.name << ", " << seg.nf << " fibres, "
+             << seg.ns << " cross-sections, periodic)\n";
       if (test.loading == ElementaryLoading::tension)
         {
           run_tension(seg, rec);
@@ -381,12 +386,12 @@ namespace YarnImpact
                 bmean += b;
                 ++nb;
               }
-          bmean = (nb > 0 ? bmean / nb : 0.);
+          bmean       = (nb > 0 ? bmean / nb : 0.);
           double bstd = 0.;
           for (const double b : breaks)
             if (b >= 0.)
               bstd += (b - bmean) * (b - bmean);
-          bstd = (nb > 1 ? std::sqrt(bstd / (nb - 1)) : 0.);
+          bstd            = (nb > 1 ? std::sqrt(bstd / (nb - 1)) : 0.);
           const Row &last = rec.rows.back();
           report << "  fibre area fraction of the FE ellipse   "
                  << fixed(phi, 5) << '\n'
@@ -397,8 +402,8 @@ namespace YarnImpact
                  << " MPa (before the first break)\n"
                  << "  peak axial Kirchhoff stress             "
                  << fixed(peak * 1e-6, 1) << " MPa\n"
-                 << "  broken fibres                           " << nb
-                 << " of " << seg.nf << '\n';
+                 << "  broken fibres                           " << nb << " of "
+                 << seg.nf << '\n';
           if (nb > 0)
             report << "  fibre break strains: min, mean, max     "
                    << fixed(bmin * 100., 4) << ", " << fixed(bmean * 100., 4)
@@ -420,9 +425,9 @@ namespace YarnImpact
       else
         {
           const std::vector<double> pressures =
-            (test.loading == ElementaryLoading::distortion ?
-               test.confining_pressures :
-               std::vector<double>{0.});
+            (test.loading == ElementaryLoading::distortion
+               ? test.confining_pressures
+               : std::vector<double>{0.});
           for (const double pc : pressures)
             {
               const std::size_t first = rec.rows.size();
@@ -432,7 +437,7 @@ namespace YarnImpact
               double peak_yy = 0., virial_gap = 0., ke_ratio = 0.;
               double ratio_peak = 0., servo_err = 0., servo_mean = 0.;
               unsigned int servo_rows = 0;
-              const Row *at_peak = nullptr;
+              const Row *at_peak      = nullptr;
               for (std::size_t k = first; k < rec.rows.size(); ++k)
                 {
                   const Row &r = rec.rows[k];
@@ -449,7 +454,7 @@ namespace YarnImpact
                   const Row &r = rec.rows[k];
                   if (r.phase != "load" || r.strain < 0.25 * test.max_strain)
                     continue;
-                  virial_gap = std::max(virial_gap,
+                  virial_gap          = std::max(virial_gap,
                                         std::abs(r.tau[1] - r.tau_boundary[0]) /
                                           std::max(peak_yy, 1e-300));
                   const double stored = r.sums.truss + r.sums.contact;
@@ -467,7 +472,7 @@ namespace YarnImpact
               // the rows where the side walls hold the pressure.
               for (std::size_t k = first; pc > 0. && k < rec.rows.size(); ++k)
                 {
-                  const Row &r = rec.rows[k];
+                  const Row &r      = rec.rows[k];
                   const double s_yy = r.plate_load / r.wall_gap,
                                s_zz = r.wall_load / r.plate_gap;
                   if (r.phase == "load" && std::abs(s_zz / pc - 1.) < 0.05)
@@ -478,8 +483,8 @@ namespace YarnImpact
                      << fixed(pc * 1e-6, 2) << " MPa\n";
               if (at_peak)
                 report << "  at the peak of -tau_yy (plate strain "
-                       << fixed(at_peak->strain, 3)
-                       << "): F_yy " << fixed(at_peak->F[4], 4) << ", F_zz "
+                       << fixed(at_peak->strain, 3) << "): F_yy "
+                       << fixed(at_peak->F[4], 4) << ", F_zz "
                        << fixed(at_peak->F[8], 4) << ", I_tc "
                        << fixed(at_peak->inv.compaction, 4) << ", I_td "
                        << fixed(at_peak->inv.distortion, 4) << '\n'
@@ -502,8 +507,7 @@ namespace YarnImpact
                          << fixed(closed, 3) << ")\n";
                   report << "  side walls: sigma_zz / p_c on average "
                          << fixed(servo_mean, 4) << ", at worst off by "
-                         << fixed(100. * servo_err, 1)
-                         << " % (slip events)\n";
+                         << fixed(100. * servo_err, 1) << " % (slip events)\n";
                   check("side walls hold the confining pressure within 2 % "
                         "on average over the loading",
                         std::abs(servo_mean - 1.) < 0.02);
@@ -513,7 +517,8 @@ namespace YarnImpact
                       "5 % of the peak (quasi-static)",
                       virial_gap < 0.05);
               report << "  largest kinetic/stored energy (loading) "
-                     << (testing ? fixed(ke_ratio, 3) : std::to_string(ke_ratio))
+                     << (testing ? fixed(ke_ratio, 3)
+                                 : std::to_string(ke_ratio))
                      << '\n';
             }
         }

@@ -105,30 +105,28 @@ namespace YarnImpact
       const std::string s = "Elementary test";
       prm.enter_subsection(s);
       const std::string l = prm.get("Loading");
-      loading             = (l == "tension"    ? ElementaryLoading::tension :
-                             l == "compaction" ? ElementaryLoading::compaction :
-                             l == "distortion" ? ElementaryLoading::distortion :
-                                                 ElementaryLoading::none);
-      const int n_st = prm.get_integer("Cross-sections");
+      loading             = (l == "tension"      ? ElementaryLoading::tension
+                             : l == "compaction" ? ElementaryLoading::compaction
+                             : l == "distortion" ? ElementaryLoading::distortion
+                                                 : ElementaryLoading::none);
+      const int n_st      = prm.get_integer("Cross-sections");
       require(n_st >= 3,
               s + "/Cross-sections",
               "= " + std::to_string(n_st) +
                 " must be at least 3 (a sphere must meet a single periodic "
                 "image of another)");
-      stations    = static_cast<unsigned int>(n_st);
-      strain_rate = YarnImpact::Parameters::get_positive_double(prm,
-                                                                s,
-                                                                "Strain rate");
-      max_strain  = YarnImpact::Parameters::get_positive_double(prm,
-                                                               s,
-                                                               "Largest strain");
+      stations = static_cast<unsigned int>(n_st);
+      strain_rate =
+        YarnImpact::Parameters::get_positive_double(prm, s, "Strain rate");
+      max_strain =
+        YarnImpact::Parameters::get_positive_double(prm, s, "Largest strain");
       require(loading == ElementaryLoading::tension || max_strain < 0.9,
               s + "/Largest strain",
               "= " + std::to_string(max_strain) +
                 " would close the plates (at most 0.9)");
       unload = prm.get_bool("Unload");
-      side_walls = (prm.get("Side walls") == "fixed" ? SideWalls::fixed :
-                                                      SideWalls::none);
+      side_walls =
+        (prm.get("Side walls") == "fixed" ? SideWalls::fixed : SideWalls::none);
       local_damping = prm.get_double("Local damping");
       require(std::isfinite(local_damping) && local_damping >= 0. &&
                 local_damping < 1.,

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace YarnImpact
@@ -310,6 +311,23 @@ namespace YarnImpact
       law.k_t = prm.tangential_stiffness_ratio * law.k_n;
       law.mu  = prm.projectile_friction;
       return law;
+    }
+
+
+    double
+    critical_time_step(const Parameters &prm,
+                       const double truss_k,
+                       const double sphere_mass)
+    {
+      const ContactLaw fibre = fibre_contact_law(prm, truss_k, sphere_mass);
+      const ContactLaw projectile =
+        projectile_contact_law(prm, truss_k, sphere_mass);
+      const double omega2 =
+        2. * (2. * truss_k + prm.coordination * fibre.k_n + projectile.k_n) /
+        sphere_mass;
+      const double zeta =
+        std::max(prm.damping_ratio, prm.projectile_damping_ratio);
+      return 2. / std::sqrt(omega2) * (std::sqrt(1. + zeta * zeta) - zeta);
     }
   } // namespace DEM
 } // namespace YarnImpact

@@ -36,10 +36,11 @@ namespace YarnImpact
       } // namespace
 
 
-      PeriodicSegment::PeriodicSegment(const YarnImpact::Parameters::Shared &shared,
-                       const Parameters &dem,
-                       const ElementaryTestParameters &test,
-                       const MPI_Comm comm)
+      PeriodicSegment::PeriodicSegment(
+        const YarnImpact::Parameters::Shared &shared,
+        const Parameters &dem,
+        const ElementaryTestParameters &test,
+        const MPI_Comm comm)
         : shared(shared)
         , dem(dem)
         , test(test)
@@ -54,20 +55,20 @@ namespace YarnImpact
         // Checked as by validate() (also run at parsing); the segment
         // ignores Symmetry.
         const FibreCentres centres = fibre_centres(shared, dem, false);
-        packing_scale = centres.scale;
-        nf            = centres.size();
-        ns            = test.stations;
-        n             = static_cast<std::size_t>(nf) * ns;
+        packing_scale              = centres.scale;
+        nf                         = centres.size();
+        ns                         = test.stations;
+        n                          = static_cast<std::size_t>(nf) * ns;
         require(nf >= n_ranks,
                 "Yarn/Number of fibres",
                 "= " + std::to_string(nf) +
                   ": an elementary test needs at least one fibre per MPI "
                   "rank");
 
-        L0  = dem.sphere_spacing;
-        Lx0 = ns * L0;
-        Lx  = Lx0;
-        V0  = Lx0 * y.section_area();
+        L0                      = dem.sphere_spacing;
+        Lx0                     = ns * L0;
+        Lx                      = Lx0;
+        V0                      = Lx0 * y.section_area();
         const double fibre_area = PI * d * d / 4.;
         mass                    = y.fibre_density * fibre_area * L0;
         truss_k                 = y.fibre_modulus * fibre_area / L0;
@@ -81,20 +82,14 @@ namespace YarnImpact
         wall_law.k_t = 0.;
         wall_law.mu  = 0.;
 
-        // The impact model's stable step: two trusses, `coordination`
-        // contacts and a wall per sphere.
-        const double omega2 =
-          2. * (2. * truss_k + dem.coordination * fibre_law.k_n + wall_law.k_n) /
-          mass;
-        const double zeta =
-          std::max(dem.damping_ratio, dem.projectile_damping_ratio);
-        dt = shared.time.safety_factor * 2. / std::sqrt(omega2) *
-             (std::sqrt(1. + zeta * zeta) - zeta);
+        // The impact model's stable step (a wall in place of the
+        // projectile).
+        dt = shared.time.safety_factor * critical_time_step(dem, truss_k, mass);
 
         // Fibres in contiguous ranges; sphere i = f * ns + s.
-        f_begin = static_cast<unsigned int>(
-          static_cast<unsigned long>(nf) * rank / n_ranks);
-        f_end = static_cast<unsigned int>(static_cast<unsigned long>(nf) *
+        f_begin = static_cast<unsigned int>(static_cast<unsigned long>(nf) *
+                                            rank / n_ranks);
+        f_end   = static_cast<unsigned int>(static_cast<unsigned long>(nf) *
                                           (rank + 1) / n_ranks);
         i_begin = static_cast<std::size_t>(f_begin) * ns;
         i_end   = static_cast<std::size_t>(f_end) * ns;
@@ -196,14 +191,17 @@ namespace YarnImpact
         unsigned int nc[2];
         for (unsigned int c = 0; c < 2; ++c)
           nc[c] = 1 + static_cast<unsigned int>((hi[c] - lo[c]) / cutoff);
-        std::vector<std::uint32_t> cell_of(n), cell_start(nc[0] * nc[1] + 1,
-                                                          0);
+        std::vector<std::uint32_t> cell_of(n), cell_start(nc[0] * nc[1] + 1, 0);
         for (std::size_t i = 0; i < n; ++i)
           {
-            const unsigned int cy = std::min<unsigned int>(
-                                 nc[0] - 1, (x[3 * i + 1] - lo[0]) / cutoff),
-                               cz = std::min<unsigned int>(
-                                 nc[1] - 1, (x[3 * i + 2] - lo[1]) / cutoff);
+            const unsigned int cy =
+                                 std::min<unsigned int>(nc[0] - 1,
+                                                        (x[3 * i + 1] - lo[0]) /
+                                                          cutoff),
+                               cz =
+                                 std::min<unsigned int>(nc[1] - 1,
+                                                        (x[3 * i + 2] - lo[1]) /
+                                                          cutoff);
             cell_of[i] = cy * nc[1] + cz;
             ++cell_start[cell_of[i] + 1];
           }
@@ -239,8 +237,8 @@ namespace YarnImpact
                       const std::uint32_t j = sorted[k];
                       if (j == i)
                         continue;
-                      double ex = x[3 * j] - x[3 * i];
-                      ex = nearest_image(ex, Lx);
+                      double ex       = x[3 * j] - x[3 * i];
+                      ex              = nearest_image(ex, Lx);
                       const double ey = x[3 * j + 1] - x[3 * i + 1],
                                    ez = x[3 * j + 2] - x[3 * i + 2];
                       if (ex * ex + ey * ey + ez * ez < c2)
@@ -248,8 +246,8 @@ namespace YarnImpact
                     }
                 }
             std::sort(found.begin(), found.end());
-            const std::size_t li = i - i_begin;
-            std::uint32_t p = (start.empty() ? 0 : start[li]);
+            const std::size_t li      = i - i_begin;
+            std::uint32_t p           = (start.empty() ? 0 : start[li]);
             const std::uint32_t p_end = (start.empty() ? 0 : start[li + 1]);
             for (const std::uint32_t j : found)
               {
@@ -291,7 +289,8 @@ namespace YarnImpact
                                     (s + 1 == ns ? 0 : s + 1);
               if (broken[i])
                 continue;
-              const double e[3] = {x[3 * j] - x[3 * i] + (s + 1 == ns ? Lx : 0.),
+              const double e[3] = {x[3 * j] - x[3 * i] +
+                                     (s + 1 == ns ? Lx : 0.),
                                    x[3 * j + 1] - x[3 * i + 1],
                                    x[3 * j + 2] - x[3 * i + 2]};
               double t[3];
@@ -332,11 +331,11 @@ namespace YarnImpact
               {
                 const std::size_t j = neighbour[p];
                 double ex           = x[3 * i] - x[3 * j];
-                ex = nearest_image(ex, Lx);
-                const double ey = x[3 * i + 1] - x[3 * j + 1],
-                             ez = x[3 * i + 2] - x[3 * j + 2];
-                const double r2 = ex * ex + ey * ey + ez * ez;
-                double *xi      = &history[3 * p];
+                ex                  = nearest_image(ex, Lx);
+                const double ey     = x[3 * i + 1] - x[3 * j + 1],
+                             ez     = x[3 * i + 2] - x[3 * j + 2];
+                const double r2     = ex * ex + ey * ey + ez * ez;
+                double *xi          = &history[3 * p];
                 if (r2 >= d2)
                   {
                     if (touching[p])
@@ -433,7 +432,7 @@ namespace YarnImpact
         // wave).
         if (test.loading == ElementaryLoading::tension)
           {
-            axial_strain = std::min(test.max_strain, test.strain_rate * time);
+            axial_strain   = std::min(test.max_strain, test.strain_rate * time);
             const double L = Lx0 * (1. + axial_strain);
             const double r = L / Lx;
             for (std::size_t i = i_begin; i < i_end; ++i)
@@ -450,7 +449,7 @@ namespace YarnImpact
           {
             const double dx = x[k] - x_built[k], dy = x[k + 1] - x_built[k + 1],
                          dz = x[k + 2] - x_built[k + 2];
-            moved = std::max(moved, dx * dx + dy * dy + dz * dz);
+            moved           = std::max(moved, dx * dx + dy * dy + dz * dz);
           }
         if (4. * moved > dem.skin * dem.skin)
           build_lists();
@@ -505,7 +504,8 @@ namespace YarnImpact
             const std::size_t j  = (s + 1 == ns ? i + 1 - ns : i + 1);
             if (!broken[i])
               {
-                const double e[3] = {x[3 * j] - x[3 * i] + (s + 1 == ns ? Lx : 0.),
+                const double e[3] = {x[3 * j] - x[3 * i] +
+                                       (s + 1 == ns ? Lx : 0.),
                                      x[3 * j + 1] - x[3 * i + 1],
                                      x[3 * j + 2] - x[3 * i + 2]};
                 const double l =
@@ -517,10 +517,10 @@ namespace YarnImpact
                 {
                   const std::size_t jj = neighbour[p];
                   double ex            = x[3 * i] - x[3 * jj];
-                  ex = nearest_image(ex, Lx);
-                  const double ey = x[3 * i + 1] - x[3 * jj + 1],
-                               ez = x[3 * i + 2] - x[3 * jj + 2];
-                  const double dist = std::sqrt(ex * ex + ey * ey + ez * ez);
+                  ex                   = nearest_image(ex, Lx);
+                  const double ey      = x[3 * i + 1] - x[3 * jj + 1],
+                               ez      = x[3 * i + 2] - x[3 * jj + 2];
+                  const double dist    = std::sqrt(ex * ex + ey * ey + ez * ez);
                   m[8] += 0.5 * fibre_law.energy(d - dist, &history[3 * p]);
                 }
             m[9] = dissipated[li];
@@ -570,7 +570,7 @@ namespace YarnImpact
                   G[r][c] += Xc[r] * Xc[c];
                 }
           }
-        const double det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
+        const double det      = G[0][0] * G[1][1] - G[0][1] * G[1][0];
         const double Gi[2][2] = {{G[1][1] / det, -G[0][1] / det},
                                  {-G[1][0] / det, G[0][0] / det}};
         for (unsigned int k = 0; k < 9; ++k)
@@ -603,8 +603,8 @@ namespace YarnImpact
       {
         double e = -side * std::numeric_limits<double>::max();
         for (std::size_t i = 0; i < n; ++i)
-          e = (side > 0. ? std::max(e, x[3 * i + axis]) :
-                           std::min(e, x[3 * i + axis]));
+          e = (side > 0. ? std::max(e, x[3 * i + axis])
+                         : std::min(e, x[3 * i + axis]));
         return e;
       }
 
@@ -648,5 +648,5 @@ namespace YarnImpact
         return all;
       }
     } // namespace internal
-  } // namespace DEM
+  }   // namespace DEM
 } // namespace YarnImpact

@@ -850,7 +850,8 @@ namespace YarnImpact
           double p[n_nodes][3];
           vertex_positions(c, p);
           double vz2 = 0., vol = 0.;
-          const double g[2] = {0.5 - 0.5 / std::sqrt(3.), 0.5 + 0.5 / std::sqrt(3.)};
+          const double g[2] = {0.5 - 0.5 / std::sqrt(3.),
+                               0.5 + 0.5 / std::sqrt(3.)};
           for (unsigned int q = 0; q < 8; ++q)
             {
               const double xi[3] = {g[q & 1], g[(q >> 1) & 1], g[(q >> 2) & 1]};
@@ -871,10 +872,10 @@ namespace YarnImpact
                     for (unsigned int e = 0; e < 3; ++e)
                       J[i][e] += p[a][i] * dN[e];
                 }
-              const double detJ = std::abs(
-                J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
-                J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-                J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]));
+              const double detJ =
+                std::abs(J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+                         J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]));
               vz2 += 0.125 * detJ * zq * zq;
               vol += 0.125 * detJ;
             }
@@ -903,7 +904,6 @@ namespace YarnImpact
           maxima[2 * n + s] = std::max(maxima[2 * n + s], -z);
           sums[s] += std::abs(x);
           sums[n + s] += 1.;
-
         }
       Utilities::MPI::max(maxima, communicator, maxima);
       Utilities::MPI::sum(sums, communicator, sums);

@@ -40,8 +40,8 @@ namespace
     out << loading << ',' << pressure << ",load,0," << strain << ',' << F[0]
         << ',' << F[4] << ',' << F[5] << ',' << F[7] << ',' << F[8] << ','
         << inv.elongation << ',' << inv.compaction << ',' << inv.distortion
-        << ",0,0," << tau[0] << ',' << tau[4] << ',' << tau[8] << ','
-        << tau[5] << ",0,0,0,0,0,0,0,0,0,0,0\n";
+        << ",0,0," << tau[0] << ',' << tau[4] << ',' << tau[8] << ',' << tau[5]
+        << ",0,0,0,0,0,0,0,0,0,0,0\n";
   }
 } // namespace
 
@@ -65,7 +65,7 @@ main(int argc, char **argv)
   t << header << '\n';
   for (unsigned int k = 0; k <= 40; ++k)
     {
-      const double e    = 0.045 * k / 40.;
+      const double e      = 0.045 * k / 40.;
       const FE::Matrix3 F = {1. + e, 0., 0., 0., 1., 0., 0., 0., 1.};
       row(t, law, "tension", 0., e, F);
     }

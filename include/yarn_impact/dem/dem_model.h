@@ -158,6 +158,18 @@ namespace YarnImpact
                            const double truss_k,
                            const double sphere_mass);
 
+    /**
+     * Largest stable step of a sphere of mass @p sphere_mass [kg] with two
+     * trusses of stiffness @p truss_k [N/m], DEM/Coordination fibre
+     * contacts and one projectile (or wall) contact: the Gershgorin bound
+     * of doc/theory.md section 3.2, reduced for the contact damping, before
+     * the safety factor [s].
+     */
+    double
+    critical_time_step(const Parameters &prm,
+                       const double truss_k,
+                       const double sphere_mass);
+
     /** Create the DEM model of the yarn described by @p shared. */
     std::unique_ptr<ImpactModel>
     create_model(const YarnImpact::Parameters::Shared &shared,

@@ -81,14 +81,14 @@ namespace YarnImpact
 
     /**
      * Run the elementary test @p test on a periodic segment of the yarn of
-     * @p shared and @p dem, and write `<Output/Directory>/elementary_<loading>.csv`
-     * (one row per output increment: imposed deformation, affine
-     * deformation gradient, Charmetant invariants, Kirchhoff stress of the
-     * segment from its virial and from its boundary forces, energies,
-     * broken fibres). With Output/Verbosity = test the summary is
-     * deterministic. Collective over @p communicator: every rank holds the
-     * positions of all spheres and computes the forces on the spheres of
-     * its own fibres, so 1 and N ranks give the same curves bit for bit.
+     * @p shared and @p dem, and write
+     * `<Output/Directory>/elementary_<loading>.csv` (one row per output
+     * increment: imposed deformation, affine deformation gradient, Charmetant
+     * invariants, Kirchhoff stress of the segment from its virial and from its
+     * boundary forces, energies, broken fibres). With Output/Verbosity = test
+     * the summary is deterministic. Collective over @p communicator: every rank
+     * holds the positions of all spheres and computes the forces on the spheres
+     * of its own fibres, so 1 and N ranks give the same curves bit for bit.
      * @param out the set-up report and the summary (rank 0 writes)
      * @return whether every check of the summary passed
      * @throw InputError on an impossible set-up, RunError on a blow-up

@@ -65,9 +65,9 @@ namespace YarnImpact
          * compute the first forces.
          * @throw InputError on an impossible set-up */
         PeriodicSegment(const YarnImpact::Parameters::Shared &shared,
-                const Parameters &dem,
-                const ElementaryTestParameters &test,
-                const MPI_Comm comm);
+                        const Parameters &dem,
+                        const ElementaryTestParameters &test,
+                        const MPI_Comm comm);
 
         /** Back to the packed, unloaded, unbroken reference state. */
         void
@@ -131,7 +131,7 @@ namespace YarnImpact
         std::vector<double> virial; ///< 6 per own sphere, last evaluation
         Wall walls[4];              ///< +y, -y, +z, -z
         /** External virial of the walls, yy and zz [N m]. */
-        double wall_virial[2] = {0., 0.};
+        double wall_virial[2]    = {0., 0.};
         unsigned long n_rebuilds = 0;
 
       private:
@@ -159,7 +159,7 @@ namespace YarnImpact
       };
 
     } // namespace internal
-  } // namespace DEM
+  }   // namespace DEM
 } // namespace YarnImpact
 
 #endif
