@@ -10,5 +10,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # starts afresh (yarn-impact refuses a folder holding an earlier run).
 rm -rf results/default
 mpirun -np "$(nproc)" build/yarn-impact prm/default.prm
+# The paper's Fig. 6 and the wave fronts, from comparison.csv.
+/usr/bin/python3 scripts/plot_comparison.py results/default
 # Pictures of the yarns (the paper's Fig. 3-5) from the VTU output.
 bash scripts/make_figures.sh results/default results/default/figures

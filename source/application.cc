@@ -1,6 +1,7 @@
 #include <yarn_impact/analysis/model_comparison.h>
 #include <yarn_impact/application.h>
 #include <yarn_impact/core/impact_simulation.h>
+#include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/fe/fe_model.h>
 
@@ -339,11 +340,15 @@ namespace YarnImpact
 
         const auto &output = parameters.shared.output;
         prepare_output_directory(output, file, is_root, out);
-        if (is_root)
-          {
-            std::ofstream resolved(output.directory + "/parameters.prm");
-            prm.print_parameters(resolved, ParameterHandler::ShortPRM);
-          }
+        collective_output(MPI_COMM_WORLD, [&] {
+          if (is_root)
+            {
+              AtomicFile resolved(output.directory + "/parameters.prm");
+              prm.print_parameters(resolved.stream(),
+                                   ParameterHandler::ShortPRM);
+              resolved.commit();
+            }
+        });
 
         if (parameters.elementary.loading != DEM::ElementaryLoading::none)
           {
@@ -402,34 +407,35 @@ namespace YarnImpact
               simulation.model().axial_properties().axial_stiffness();
             histories.push_back(simulation.history());
           }
+        Analysis::ComparisonSummary comparison;
+        if (histories.size() == 2)
+          collective_output(MPI_COMM_WORLD, [&] {
+            if (is_root)
+              comparison = Analysis::compare_models(histories[0],
+                                                    histories[1],
+                                                    output.directory);
+          });
         if (histories.size() == 2 && is_root)
           {
-            const auto comparison = Analysis::compare_models(histories[0],
-                                                             histories[1],
-                                                             output.directory);
             Analysis::print_comparison(comparison,
                                        mass_per_length,
                                        axial_stiffness,
                                        histories[0],
                                        histories[1],
                                        summary_text);
-            const std::string command =
-              "/usr/bin/python3 " YARN_IMPACT_SCRIPT_DIR
-              "/plot_comparison.py '" +
-              output.directory + "' > /dev/null 2>&1";
-            if (std::system(command.c_str()) != 0)
-              summary_text << "  (plots skipped: " << command
-                           << " failed; python3-matplotlib missing?)\n";
-            else
-              summary_text << "  plots: velocity_comparison.png, "
-                              "wave_fronts.png\n";
+            // Plotting is the scripts' job (scripts/run_default.sh calls it),
+            // not the library's.
+            summary_text << "  plots: python3 scripts/plot_comparison.py "
+                            "DIRECTORY draws velocity_comparison.png and "
+                            "wave_fronts.png from comparison.csv\n";
           }
         if (is_root)
-          {
-            out << summary_text.str();
-            std::ofstream f(output.directory + "/summary.txt");
-            f << summary_text.str();
-          }
+          out << summary_text.str();
+        collective_output(MPI_COMM_WORLD, [&] {
+          if (is_root)
+            write_file_atomically(output.directory + "/summary.txt",
+                                  summary_text.str());
+        });
         if (!run_errors.empty())
           throw RunError(run_errors);
         if (!passed)
@@ -451,6 +457,12 @@ namespace YarnImpact
         if (is_root)
           std::cerr << "yarn-impact: error: " << e.what() << std::endl;
         return 4;
+      }
+    catch (const OutputError &e)
+      {
+        if (is_root)
+          std::cerr << "yarn-impact: error: " << e.what() << std::endl;
+        return 5;
       }
   }
 } // namespace YarnImpact

@@ -1,4 +1,5 @@
 #include <yarn_impact/analysis/model_comparison.h>
+#include <yarn_impact/core/output_file.h>
 
 #include <algorithm>
 #include <cmath>
@@ -77,7 +78,8 @@ namespace YarnImpact
       s.compared_until =
         (s.first_dem_break >= 0. ? std::min(s.first_dem_break, end) : end);
 
-      std::ofstream csv(directory + "/comparison.csv");
+      AtomicFile file(directory + "/comparison.csv");
+      std::ostream &csv = file.stream();
       csv << "t [us],v FE [m/s],v DEM [m/s],v FE - v DEM [m/s],"
              "longitudinal front FE [mm],longitudinal front DEM [mm],"
              "transverse front FE [mm],transverse front DEM [mm],"
@@ -107,6 +109,7 @@ namespace YarnImpact
               << ',' << f.rms_width_at_impact * 1e3 << ','
               << g.rms_width_at_impact * 1e3 << '\n';
         }
+      file.commit();
       return s;
     }
 

@@ -1,6 +1,7 @@
 #include <yarn_impact/core/history.h>
 
 #include <iomanip>
+#include <sstream>
 
 namespace YarnImpact
 {
@@ -37,11 +38,12 @@ namespace YarnImpact
     if (!is_root)
       return;
     file.open(directory + "/history_" + model_name + ".csv");
+    std::ostringstream header;
     const auto names = column_names();
     for (unsigned int i = 0; i < names.size(); ++i)
-      file << (i > 0 ? "," : "") << names[i];
-    file << '\n';
-    file << std::setprecision(10);
+      header << (i > 0 ? "," : "") << names[i];
+    header << '\n';
+    file.append(header.str());
   }
 
   void
@@ -51,7 +53,9 @@ namespace YarnImpact
     if (!file.is_open())
       return;
     const auto &m = r.model;
-    file << r.time * 1e6 << ',' << r.step << ',' << r.time_step * 1e9 << ','
+    std::ostringstream line;
+    line << std::setprecision(10);
+    line << r.time * 1e6 << ',' << r.step << ',' << r.time_step * 1e9 << ','
          << r.projectile_displacement * 1e3 << ',' << r.projectile_velocity
          << ',' << r.contact_force << ',' << m.kinetic_energy * 1e3 << ','
          << r.projectile_kinetic_energy * 1e3 << ',' << m.elastic_energy * 1e3
@@ -62,6 +66,6 @@ namespace YarnImpact
          << ',' << m.fronts.spreading * 1e3 << ','
          << m.fronts.width_at_impact * 1e3 << ',' << m.fronts.plateau_strain
          << ',' << m.fronts.rms_width_at_impact * 1e3 << '\n';
-    file.flush();
+    file.append(line.str());
   }
 } // namespace YarnImpact

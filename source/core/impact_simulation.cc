@@ -124,6 +124,10 @@ namespace YarnImpact
     void
     write_snapshot(const double time);
 
+    /** Add @p row to the history; an OutputError on any rank stops all. */
+    void
+    add_history_row(const HistoryRow &row);
+
     const Parameters::Shared &parameters;
     std::unique_ptr<ImpactModel> model;
     MPI_Comm communicator;
@@ -168,13 +172,28 @@ namespace YarnImpact
   ImpactSimulation::Implementation::write_snapshot(const double time)
   {
     const std::string &dir = parameters.output.directory;
-    snapshots.emplace_back(time * 1e6,
-                           model->write_snapshot(dir, snapshots.size(), time));
-    if (is_root)
-      {
-        std::ofstream pvd(dir + "/" + model->name() + ".pvd");
-        DataOutBase::write_pvd_record(pvd, snapshots);
-      }
+    std::string record;
+    // Each snapshot, and then the PVD that lists it, appears whole or not at
+    // all; a failure on any rank stops every rank with the same message.
+    collective_output(communicator, [&] {
+      record = model->write_snapshot(dir, snapshots.size(), time);
+    });
+    snapshots.emplace_back(time * 1e6, record);
+    collective_output(communicator, [&] {
+      if (is_root)
+        {
+          AtomicFile pvd(dir + "/" + model->name() + ".pvd");
+          DataOutBase::write_pvd_record(pvd.stream(), snapshots);
+          pvd.commit();
+        }
+    });
+  }
+
+
+  void
+  ImpactSimulation::Implementation::add_history_row(const HistoryRow &row)
+  {
+    collective_output(communicator, [&] { history->add(row); });
   }
 
 
@@ -232,7 +251,9 @@ namespace YarnImpact
       projectile.place_on(model->yarn_top());
     }
     const std::string name = model->name();
-    history = std::make_unique<History>(p.output.directory, name, is_root);
+    collective_output(communicator, [&] {
+      history = std::make_unique<History>(p.output.directory, name, is_root);
+    });
 
     const auto axial = model->axial_properties();
     const auto smith = Analysis::smith_solution(axial,
@@ -262,7 +283,7 @@ namespace YarnImpact
       initial_energy = r0.projectile_kinetic_energy + r0.model.kinetic_energy +
                        r0.model.elastic_energy + r0.model.contact_energy;
     }
-    history->add(make_row(0., 0, dt, force));
+    add_history_row(make_row(0., 0, dt, force));
     const bool snapshots_on = p.output.snapshot_interval > 0.;
     if (snapshots_on)
       {
@@ -350,7 +371,7 @@ namespace YarnImpact
                   << " % (time step too large or contact penalty too stiff?)";
                 fail(s.str());
               }
-            history->add(row);
+            add_history_row(row);
             summary.max_energy_error =
               std::max(summary.max_energy_error, std::abs(row.energy_error));
             if (summary.first_failure_time < 0. && m.n_failed > 0)
@@ -367,13 +388,13 @@ namespace YarnImpact
               }
             if (summary.cut_through_time < 0. && m.n_failed > 0 &&
                 model->yarn_cut_through())
+              summary.cut_through_time = t;
+            if (p.time.stop_at_cut_through && summary.cut_through_time >= 0. &&
+                t >= summary.cut_through_time + p.time.time_after_cut_through -
+                       eps_t)
               {
-                summary.cut_through_time = t;
-                if (p.time.stop_at_cut_through)
-                  {
-                    stop_reason = "the yarn is cut through";
-                    break;
-                  }
+                stop_reason = "the yarn is cut through";
+                break;
               }
             if (!projectile.prescribed() && projectile.impact_speed() <= 0.)
               {

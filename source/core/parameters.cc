@@ -217,6 +217,13 @@ namespace YarnImpact
         "Whether the run stops as soon as the yarn is cut through (a whole "
         "section failed); otherwise it goes on to End time with the "
         "projectile flying through, and the cut time is reported.");
+      prm.declare_entry(
+        "Time after cut through",
+        "0",
+        Patterns::Double(0.),
+        "With 'Stop when cut through', the run goes on for this long after "
+        "the cut, so that the fragments leave the projectile and its "
+        "residual velocity settles [s].");
       prm.leave_subsection();
     }
 
@@ -234,7 +241,8 @@ namespace YarnImpact
         get_positive_integer(prm, "Time", "Time step update interval");
       energy_error_limit =
         get_positive_double(prm, "Time", "Energy error limit");
-      stop_at_cut_through = prm.get_bool("Stop when cut through");
+      stop_at_cut_through    = prm.get_bool("Stop when cut through");
+      time_after_cut_through = prm.get_double("Time after cut through");
       prm.leave_subsection();
     }
 

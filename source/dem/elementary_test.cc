@@ -3,6 +3,7 @@
 // its homogenised stress. The theory, the boundary conditions and the
 // checks are in doc/identification.md.
 #include <yarn_impact/core/impact_simulation.h>
+#include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/elementary_test.h>
@@ -82,7 +83,7 @@ namespace YarnImpact
       {
       public:
         Recorder(PeriodicSegment &segment,
-                 std::ostream *csv,
+                 AppendFile *csv,
                  const std::string &name)
           : seg(segment)
           , csv(csv)
@@ -125,31 +126,32 @@ namespace YarnImpact
             }
           for (const double b : seg.break_strains())
             r.broken_fibres += (b >= 0.);
-          if (csv)
-            {
-              std::ostream &o = *csv;
-              o << name << ',' << pressure << ',' << phase << ',' << r.time
-                << ',' << strain << ',' << r.F[0] << ',' << r.F[4] << ','
-                << r.F[5] << ',' << r.F[7] << ',' << r.F[8] << ','
-                << r.inv.elongation << ',' << r.inv.compaction << ','
-                << r.inv.distortion << ',' << r.height << ',' << r.width << ','
-                << r.tau[0] << ',' << r.tau[1] << ',' << r.tau[2] << ','
-                << r.tau[3] << ',' << r.tau_boundary[0] << ','
-                << r.tau_boundary[1] << ',' << r.plate_gap << ','
-                << r.plate_load << ',' << r.wall_gap << ',' << r.wall_load
-                << ',' << r.sums.kinetic << ',' << r.sums.truss << ','
-                << r.sums.contact << ',' << r.sums.dissipated << ','
-                << r.broken_fibres << '\n';
-              if (!o)
-                throw RunError("cannot write the elementary-test CSV "
-                               "(disk full?)");
-            }
+          // Every rank records (the sums are collective); rank 0 writes, and
+          // a failed write stops all ranks alike.
+          collective_output(seg.comm, [&] {
+            if (csv == nullptr)
+              return;
+            std::ostringstream o;
+            o << std::setprecision(10);
+            o << name << ',' << pressure << ',' << phase << ',' << r.time << ','
+              << strain << ',' << r.F[0] << ',' << r.F[4] << ',' << r.F[5]
+              << ',' << r.F[7] << ',' << r.F[8] << ',' << r.inv.elongation
+              << ',' << r.inv.compaction << ',' << r.inv.distortion << ','
+              << r.height << ',' << r.width << ',' << r.tau[0] << ','
+              << r.tau[1] << ',' << r.tau[2] << ',' << r.tau[3] << ','
+              << r.tau_boundary[0] << ',' << r.tau_boundary[1] << ','
+              << r.plate_gap << ',' << r.plate_load << ',' << r.wall_gap << ','
+              << r.wall_load << ',' << r.sums.kinetic << ',' << r.sums.truss
+              << ',' << r.sums.contact << ',' << r.sums.dissipated << ','
+              << r.broken_fibres << '\n';
+            csv->append(o.str());
+          });
           rows.push_back(r);
           return r;
         }
 
         PeriodicSegment &seg;
-        std::ostream *csv;
+        AppendFile *csv;
         std::string name;
         std::vector<Row> rows;
       };
@@ -336,14 +338,14 @@ namespace YarnImpact
       const std::string file =
         shared.output.directory + "/" + elementary_test_file(test.loading);
       const std::string partial = file + ".partial";
-      std::ofstream csv;
-      if (root)
-        {
-          csv.open(partial);
-          if (!csv)
-            throw RunError("cannot write '" + partial + "'");
-          csv << std::setprecision(10) << csv_header << '\n';
-        }
+      AppendFile csv;
+      collective_output(communicator, [&] {
+        if (root)
+          {
+            csv.open(partial);
+            csv.append(std::string(csv_header) + '\n');
+          }
+      });
       const std::string name =
         elementary_test_file(test.loading).substr(11, std::string::npos);
       Recorder rec(seg, root ? &csv : nullptr, name.substr(0, name.size() - 4));
@@ -526,22 +528,23 @@ namespace YarnImpact
         report << "  neighbour-list rebuilds: " << seg.n_rebuilds
                << "\n  rows written to " << file << '\n';
 
+      // The curves get their final name only once complete.
+      collective_output(communicator, [&] {
+        if (!root)
+          return;
+        std::error_code ec;
+        std::filesystem::rename(partial, file, ec);
+        if (ec)
+          throw OutputError("cannot rename '" + partial + "' to '" + file +
+                            "': " + ec.message() + ".");
+      });
       if (root)
-        {
-          csv.close();
-          if (!csv)
-            throw RunError("cannot write '" + partial + "' (disk full?)");
-          std::error_code ec;
-          std::filesystem::rename(partial, file, ec);
-          if (ec)
-            throw RunError("cannot rename '" + partial + "' to '" + file +
-                           "': " + ec.message());
-          out << report.str();
-          std::ofstream summary(shared.output.directory + "/summary.txt");
-          summary << report.str();
-          if (!summary)
-            throw RunError("cannot write the summary (disk full?)");
-        }
+        out << report.str();
+      collective_output(communicator, [&] {
+        if (root)
+          write_file_atomically(shared.output.directory + "/summary.txt",
+                                report.str());
+      });
       return passed;
     }
   } // namespace DEM

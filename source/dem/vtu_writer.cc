@@ -1,3 +1,4 @@
+#include <yarn_impact/core/output_file.h>
 #include <yarn_impact/dem/vtu_writer.h>
 
 #include <cstring>
@@ -91,9 +92,8 @@ namespace YarnImpact
                   const std::vector<Array> &point_data,
                   const std::vector<Array> &cell_data)
       {
-        std::ofstream out(file, std::ios::binary);
-        if (!out)
-          throw std::runtime_error("cannot write " + file);
+        AtomicFile atomic(file);
+        std::ostream &out          = atomic.stream();
         const std::size_t n_points = points.size() / 3;
         const std::size_t n_cells  = lines.size() / 2;
         out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" "
@@ -140,6 +140,7 @@ namespace YarnImpact
         std::vector<std::uint8_t> types(n_cells, 3); // VTK_LINE
         write_array(out, "types", "UInt8", 1, types.data(), types.size());
         out << "</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+        atomic.commit();
       }
 
       void
@@ -148,9 +149,8 @@ namespace YarnImpact
                    const std::vector<Array> &point_data,
                    const std::vector<Array> &cell_data)
       {
-        std::ofstream out(file);
-        if (!out)
-          throw std::runtime_error("cannot write " + file);
+        AtomicFile atomic(file);
+        std::ostream &out = atomic.stream();
         out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" "
                "version=\"0.1\" byte_order=\"LittleEndian\" "
                "header_type=\"UInt32\">\n<PUnstructuredGrid "
@@ -167,6 +167,7 @@ namespace YarnImpact
         for (const auto &p : pieces)
           out << "<Piece Source=\"" << p << "\"/>\n";
         out << "</PUnstructuredGrid>\n</VTKFile>\n";
+        atomic.commit();
       }
     } // namespace VTU
   }   // namespace DEM

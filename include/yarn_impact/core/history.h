@@ -2,8 +2,8 @@
 #define yarn_impact_core_history_h
 
 #include <yarn_impact/core/impact_model.h>
+#include <yarn_impact/core/output_file.h>
 
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -44,12 +44,14 @@ namespace YarnImpact
   {
   public:
     /** Open `<directory>/history_<model_name>.csv` on rank 0 and write the
-     * header. */
+     * header (an OutputError if it cannot). */
     History(const std::string &directory,
             const std::string &model_name,
             const bool is_root);
 
-    /** Append a row (flushed, so a crashed run keeps what it had). */
+    /** Append a row, written at once and whole (a crashed run keeps what it
+     * had; a failed write throws an OutputError and leaves the file ending
+     * with its last whole row). */
     void
     add(const HistoryRow &row);
 
@@ -65,7 +67,7 @@ namespace YarnImpact
     column_names();
 
   private:
-    std::ofstream file;
+    AppendFile file;
     std::vector<HistoryRow> all_rows;
   };
 } // namespace YarnImpact

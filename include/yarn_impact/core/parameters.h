@@ -129,6 +129,9 @@ namespace YarnImpact
       double energy_error_limit = 0.05;
       /** Whether the run stops when the yarn is cut through. */
       bool stop_at_cut_through = false;
+      /** With stop_at_cut_through, how long the run goes on after the cut
+       * [s]. */
+      double time_after_cut_through = 0.;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

@@ -31,7 +31,8 @@ namespace YarnImpact
       };
 
       /**
-       * Write one piece.
+       * Write one piece, whole or not at all (an OutputError naming the file
+       * and the cause if it cannot be written).
        * @param points point coordinates, 3 per point [m]
        * @param lines point indices, 2 per line cell
        */
@@ -43,7 +44,8 @@ namespace YarnImpact
                   const std::vector<Array> &cell_data);
 
       /** Write the `.pvtu` record of @p pieces (file names relative to the
-       * record); the arrays give the names, types and components. */
+       * record); the arrays give the names, types and components. Written
+       * whole or not at all (an OutputError if it cannot be). */
       void
       write_record(const std::string &file,
                    const std::vector<std::string> &pieces,

@@ -1,0 +1,241 @@
+#!/usr/bin/python3
+"""Ballistic answers in one command: a velocity sweep of the FE (Charmetant
+and linear laws) and the DEM, each model's critical velocity by bisection,
+Smith's critical velocity, a CSV and plots (doc/ballistics.md).
+
+Usage:
+  python3 scripts/ballistic_sweep.py [--build build] [--out results/ballistics]
+      [--np 2] [--models charmetant,linear,dem]
+      [--velocities 60,120,200,300,450,600,800,1000,1200]
+      [--dem-velocities 120,300,600,1000,1200] [--tolerance 5]
+      [--no-bisection] [--plots-only]
+
+Each run is the paper's case (prm/km2_120ms_fe.prm, the linear law of
+prm/study/fe_linear.prm, prm/km2_120ms_dem.prm) at another impact velocity,
+without snapshots, stopping 2 us after the yarn is cut through or at 40 us.
+Runs already done (their summary.txt exists) are reused, so an interrupted
+sweep goes on where it stopped.
+
+What is measured, per run (from history_<model>.csv and summary.txt):
+  residual velocity      projectile velocity at the end of the run [m/s]
+  energy absorbed        loss of projectile kinetic energy [mJ]
+  first break            time of the first failed cell / broken truss [us]
+  cut through            time the yarn is cut through [us]
+
+A model's critical velocity is the lowest impact velocity at which the yarn
+is cut through before the longitudinal wave, reflected at the clamps, is back
+at the impact point (t_r = L / c, 3.2 us here): above it the yarn breaks on
+the first strain wave, as in Smith's definition (strain behind the front =
+failure strain); below it the yarn breaks, if at all, on the reflected
+waves. Found by bisection between the sweep's velocities, to --tolerance.
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# The paper's yarn (prm/km2_120ms_fe.prm; doc/theory.md).
+LENGTH = 0.0254  # [m]
+FAILURE_STRAIN = 0.0452  # [-]
+FIBRE_MODULUS = 84.62e9  # [Pa]
+DENSITY = 1440.0  # [kg/m^3], fibre density
+PROJECTILE_MASS = 9.91e-6  # [kg]
+
+MODELS = {
+    "charmetant": ("fe", "prm/km2_120ms_fe.prm", ""),
+    "linear": ("fe", "prm/km2_120ms_fe.prm",
+               "subsection FE\n  set Constitutive law = Linear transversely "
+               "isotropic\nend\n"),
+    "dem": ("dem", "prm/km2_120ms_dem.prm", ""),
+}
+LABELS = {"charmetant": "FE, Charmetant law", "linear": "FE, linear TI law",
+          "dem": "DEM"}
+
+
+def smith_critical_velocity(eps=FAILURE_STRAIN, E=FIBRE_MODULUS, rho=DENSITY):
+    """Smith's critical velocity of a linear elastic yarn [m/s]:
+    V_c = c sqrt(2 eps sqrt(eps (1 + eps)) - eps^2), c = sqrt(E / rho)."""
+    c = math.sqrt(E / rho)
+    return c * math.sqrt(2. * eps * math.sqrt(eps * (1. + eps)) - eps * eps)
+
+
+def reflection_time(E=FIBRE_MODULUS, rho=DENSITY):
+    """Time for the longitudinal wave to reach a clamp and come back to the
+    impact point, L / c [s]."""
+    return LENGTH / math.sqrt(E / rho)
+
+
+def run_case(args, model, velocity, end_time):
+    """Run one case (or reuse it) and return its measured figures."""
+    kind, base, extra = MODELS[model]
+    name = "%s_%04d_%s" % (model, int(round(velocity)),
+                           "%.0fus" % (end_time * 1e6))
+    out = os.path.join(args.out, name)
+    summary = os.path.join(out, "summary.txt")
+    if not os.path.exists(summary):
+        os.makedirs(args.out, exist_ok=True)
+        prm = os.path.join(args.out, name + ".prm")
+        with open(prm, "w") as f:
+            f.write("include %s\n%s" % (os.path.join(ROOT, base), extra))
+            f.write("subsection Projectile\n  set Initial velocity = %g\nend\n"
+                    % velocity)
+            f.write("subsection Time\n  set End time = %g\n"
+                    "  set Stop when cut through = true\n"
+                    "  set Time after cut through = 2e-6\nend\n" % end_time)
+            f.write("subsection Output\n  set Directory = %s\n"
+                    "  set Snapshot interval = 0\n  set Overwrite = true\n"
+                    "  set Verbosity = quiet\nend\n" % out)
+        command = [os.path.join(args.build, "yarn-impact"), prm]
+        if kind == "dem" and args.np > 1:
+            command = ["mpirun", "-np", str(args.np)] + command
+        start = time.time()
+        with open(os.path.join(args.out, name + ".log"), "w") as log:
+            rc = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT)
+        print("  %-10s %6.0f m/s to %4.1f us: exit %d, %.0f s" %
+              (model, velocity, end_time * 1e6, rc, time.time() - start),
+              flush=True)
+    return measure(out, kind, velocity)
+
+
+def measure(out, kind, velocity):
+    with open(os.path.join(out, "history_%s.csv" % kind)) as f:
+        rows = list(csv.DictReader(f))
+    v = [float(r["projectile velocity [m/s]"]) for r in rows]
+    ke = [float(r["projectile kinetic energy [mJ]"]) for r in rows]
+    failed = [float(r["failed elements"]) for r in rows]
+    t = [float(r["t [us]"]) for r in rows]
+    first = next((t[i] for i in range(len(t)) if failed[i] > 0), None)
+    cut = None
+    if os.path.exists(os.path.join(out, "summary.txt")):
+        text = open(os.path.join(out, "summary.txt")).read()
+        m = re.search(r"yarn cut through:\s+([0-9.]+) us", text)
+        cut = float(m.group(1)) if m else None
+    return {"velocity": velocity, "residual": v[-1],
+            "absorbed": ke[0] - ke[-1], "first_break": first,
+            "cut_through": cut, "end": t[-1]}
+
+
+def breaks_at_once(result, t_r):
+    return result["cut_through"] is not None and \
+        result["cut_through"] < t_r * 1e6
+
+
+def bisect(args, model, results, t_r):
+    """Critical velocity between the sweep's velocities, to the tolerance."""
+    ordered = sorted(results, key=lambda r: r["velocity"])
+    lo = max((r["velocity"] for r in ordered if not breaks_at_once(r, t_r)),
+             default=None)
+    hi = min((r["velocity"] for r in ordered if breaks_at_once(r, t_r)
+              and (lo is None or r["velocity"] > lo)), default=None)
+    if lo is None or hi is None:
+        return None, lo, hi
+    while hi - lo > args.tolerance:
+        mid = 0.5 * (lo + hi)
+        # Only whether the yarn is cut before t_r matters here.
+        r = run_case(args, model, mid, t_r + 1e-6)
+        results.append(r)
+        if breaks_at_once(r, t_r):
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi), lo, hi
+
+
+def plot(args, table, critical, smith):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    plt.rcParams.update({"font.size": 11, "axes.grid": True,
+                         "grid.alpha": 0.3, "figure.facecolor": "white"})
+    quantities = [("residual", "residual velocity [m/s]", "residual_velocity"),
+                  ("absorbed", "energy absorbed by the yarn [mJ]",
+                   "energy_absorbed"),
+                  ("first_break", "time of first break [us]", "first_break"),
+                  ("cut_through", "time of cut-through [us]", "cut_through")]
+    styles = {"charmetant": "o-", "linear": "s--", "dem": "^-"}
+    for key, label, file in quantities:
+        fig, ax = plt.subplots(figsize=(6.4, 4.4))
+        for model, rows in table.items():
+            rows = sorted((r for r in rows if r[key] is not None),
+                          key=lambda r: r["velocity"])
+            ax.plot([r["velocity"] for r in rows], [r[key] for r in rows],
+                    styles[model], label=LABELS[model], ms=4)
+        if key == "residual":
+            vmax = max(r["velocity"] for rows in table.values() for r in rows)
+            ax.plot([0, vmax], [0, vmax], ":", color="grey",
+                    label="no deceleration")
+        ax.axvline(smith, color="k", lw=1, ls="-.",
+                   label="Smith V_c = %.0f m/s" % smith)
+        for model, vc in critical.items():
+            if vc is not None:
+                ax.axvline(vc, lw=0.8, ls=":",
+                           color=ax.lines[list(table).index(model)].get_color())
+        ax.set_xlabel("impact velocity [m/s]")
+        ax.set_ylabel(label)
+        ax.set_xlim(left=0)
+        ax.legend(fontsize=9)
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.out, file + ".png"), dpi=130)
+        plt.close(fig)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--out", default=os.path.join(ROOT, "results/ballistics"))
+    p.add_argument("--np", type=int, default=os.cpu_count() or 1)
+    p.add_argument("--models", default="charmetant,linear,dem")
+    p.add_argument("--velocities",
+                   default="60,120,200,300,450,600,800,1000,1200")
+    p.add_argument("--dem-velocities", default="120,300,600,1000,1200")
+    p.add_argument("--end-time", type=float, default=40e-6)
+    p.add_argument("--tolerance", type=float, default=5.)
+    p.add_argument("--no-bisection", action="store_true")
+    args = p.parse_args()
+    args.out = os.path.abspath(args.out)
+    t_r = reflection_time()
+    smith = smith_critical_velocity()
+    print("Smith's critical velocity (linear yarn, eps_b = %g): %.1f m/s; "
+          "reflection time L/c = %.2f us" % (FAILURE_STRAIN, smith, t_r * 1e6))
+    start = time.time()
+    table, critical = {}, {}
+    for model in args.models.split(","):
+        velocities = args.dem_velocities if model == "dem" else args.velocities
+        results = [run_case(args, model, float(v), args.end_time)
+                   for v in velocities.split(",")]
+        table[model] = results
+        if not args.no_bisection:
+            critical[model], lo, hi = bisect(args, model, results, t_r)
+            print("  %s: critical velocity %s (between %s and %s m/s)" %
+                  (model, "%.1f m/s" % critical[model]
+                   if critical[model] else "not bracketed", lo, hi),
+                  flush=True)
+    with open(os.path.join(args.out, "ballistics.csv"), "w") as f:
+        f.write("model,impact velocity [m/s],residual velocity [m/s],"
+                "energy absorbed [mJ],first break [us],cut through [us],"
+                "end of run [us],breaks at once\n")
+        for model, rows in table.items():
+            for r in sorted(rows, key=lambda r: r["velocity"]):
+                f.write("%s,%g,%.4f,%.5f,%s,%s,%.3f,%d\n" % (
+                    model, r["velocity"], r["residual"], r["absorbed"],
+                    "" if r["first_break"] is None else "%.3f" % r["first_break"],
+                    "" if r["cut_through"] is None else "%.3f" % r["cut_through"],
+                    r["end"], breaks_at_once(r, t_r)))
+    with open(os.path.join(args.out, "critical_velocities.csv"), "w") as f:
+        f.write("model,critical velocity [m/s]\n")
+        f.write("Smith (linear yarn),%.1f\n" % smith)
+        for model, vc in critical.items():
+            f.write("%s,%s\n" % (model, "" if vc is None else "%.1f" % vc))
+    plot(args, table, critical, smith)
+    print("Wrote %s/ballistics.csv, critical_velocities.csv and 4 PNGs in "
+          "%.0f s" % (args.out, time.time() - start))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
