@@ -94,7 +94,9 @@ namespace YarnImpact
              (starts("history_") && ends(".csv")) ||
              (starts("elementary_") &&
               (ends(".csv") || ends(".csv.partial"))) ||
-             ends(".pvd") || ends(".pvtu") || ends(".vtu");
+             ends(".pvd") || ends(".pvtu") || ends(".vtu") ||
+             // A write that was interrupted (AtomicFile's temporary name).
+             (ends(".tmp") && is_run_output(name.substr(0, name.size() - 4)));
     }
 
     /**
