@@ -448,10 +448,26 @@ namespace YarnImpact
         };
         summary.mean_deceleration =
           (interpolate(rows, t0, v) - interpolate(rows, t1, v)) / (t1 - t0);
+        // The longitudinal front stops at the clamp: its speed is fitted
+        // only while it runs (up to 95 % of the half-length).
+        double t1_front = t1;
+        for (const auto &r : rows)
+          if (r.time > t0 &&
+              r.model.fronts.longitudinal >= 0.95 * 0.5 * p.yarn.length)
+            {
+              t1_front = std::min(t1, r.time);
+              break;
+            }
+        if (t1_front < t1)
+          summary.front_at_clamp_time = t1_front;
         summary.longitudinal_speed =
-          fitted_rate(rows, t0, t1, [](const HistoryRow &r) {
-            return r.model.fronts.longitudinal;
-          });
+          (t1_front > t0 ? fitted_rate(rows,
+                                       t0,
+                                       t1_front,
+                                       [](const HistoryRow &r) {
+                                         return r.model.fronts.longitudinal;
+                                       }) :
+                           0.);
         summary.transverse_speed =
           fitted_rate(rows, t0, t1, [](const HistoryRow &r) {
             return r.model.fronts.transverse;
@@ -585,8 +601,11 @@ namespace YarnImpact
     out << "  window: mean deceleration   " << s.mean_deceleration * 1e-5
         << " 1e5 m/s^2\n"
         << "  window: plateau strain      " << s.plateau_strain * 1e2 << " %\n"
-        << "  window: longitudinal speed  " << s.longitudinal_speed << " m/s\n"
-        << "  window: transverse speed    " << s.transverse_speed << " m/s\n";
+        << "  window: longitudinal speed  " << s.longitudinal_speed << " m/s";
+    if (s.front_at_clamp_time > 0.)
+      out << " (fitted up to " << s.front_at_clamp_time * 1e6
+          << " us, when the front reached the clamp)";
+    out << "\n  window: transverse speed    " << s.transverse_speed << " m/s\n";
     // The contact force jitters as surface nodes touch and leave the
     // projectile: the regression format leaves it out.
     out << "  history samples: t [us], v [m/s], "

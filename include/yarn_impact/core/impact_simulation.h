@@ -45,6 +45,9 @@ namespace YarnImpact
     double plateau_strain     = 0.; ///< [-]
     double longitudinal_speed = 0.; ///< [m/s]
     double transverse_speed   = 0.; ///< [m/s]
+    /** Time at which the longitudinal front reached the clamp inside the
+     * window, where its speed fit stops [s]; -1 if it did not. */
+    double front_at_clamp_time = -1.;
     /** Time at which the yarn was cut through [s], -1 if it was not. */
     double cut_through_time = -1.;
     /** History rows at ten evenly spaced times (interpolated). */
