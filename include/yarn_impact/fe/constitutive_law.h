@@ -1,463 +1,122 @@
 #ifndef yarn_impact_fe_constitutive_law_h
 #define yarn_impact_fe_constitutive_law_h
 
+#include <yarn_impact/fe/charmetant_law.h>
+#include <yarn_impact/fe/kinematics.h>
+#include <yarn_impact/fe/linear_transversely_isotropic_law.h>
 #include <yarn_impact/fe/parameters.h>
 
-#include <cmath>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 namespace YarnImpact
 {
   namespace FE
   {
     /**
-     * A 3x3 matrix stored row by row, F[3*i + j] = F_ij. The laws work on
-     * plain arrays so that the hot loop of the FE model stays free of
-     * temporaries; deal.II tensors are used around it.
+     * @page fe_law_contract The constitutive-law contract
+     *
+     * The FE model (YarnModel) and its force loop (cell_kernel.h) are
+     * templates on the law, so that the law's stress inlines into the loop
+     * over Gauss points; a law is therefore a concept, not a virtual
+     * interface. A class `Law` is a constitutive law when a `const Law`
+     * provides
+     *
+     * - `double stress(const Matrix3 &F, Matrix3 &P, Invariants &inv)`:
+     *   the first Piola-Kirchhoff stress P [Pa] (row-major) at the
+     *   deformation gradient F (row-major, fibre direction x), returning
+     *   the strain-energy density W [J/m^3]. It must fill
+     *   `inv.elongation` = ln(lambda_f), which the failure test and the
+     *   strain outputs use; `inv.compaction` feeds transverse_modulus().
+     * - `double axial_modulus()`: the P-wave modulus along the fibres [Pa]
+     *   (stable time step, Smith's theory).
+     * - `double transverse_modulus(const Invariants &inv)`: the P-wave
+     *   modulus across the fibres at the compaction `inv.compaction` [Pa]
+     *   (stable time step).
+     * - `double uniaxial_nominal_stress(double strain)`: the nominal
+     *   stress of a free bar at an axial strain [Pa] (Smith's theory).
+     * - `double density`: the density [kg/m^3] (lumped mass).
+     * - `static constexpr bool vectorised`: true when the law also has
+     *   `template <typename V> V stress_kernel(const V (&F)[9],
+     *   V (&P)[9], V &Ie, V &Itc, V &Itd)` for V = internal::Double4,
+     *   four Gauss points at once (the same body as stress() is best, so
+     *   that the scalar tests cover it); false and the force loop calls
+     *   stress() one Gauss point at a time.
+     *
+     * The law must be copyable (axial_properties() keeps a copy).
+     * check_law_contract() states this at compile time.
+     *
+     * A new law: its own header beside charmetant_law.h (and a source
+     * file for what is not inline), its parameters in fe/parameters.h
+     * and `FE/Constitutive law`, and one entry in
+     * YARN_IMPACT_FE_FOR_EACH_LAW below.
      */
-    using Matrix3 = double[9];
-
-    /** The three physical invariants of the Charmetant law (doc/theory.md
-     * section 1.2), fibre direction M = e_x. */
-    struct Invariants
-    {
-      /** Fibre elongation \f$I_e = \ln\lambda_f\f$ [-]. */
-      double elongation = 0.;
-      /** Transverse compaction \f$I_{tc} = \tfrac14\ln(I_3/I_4)\f$ [-]. */
-      double compaction = 0.;
-      /** Transverse distortion \f$I_{td} = \tfrac12\,\mathrm{asinh}(s)\f$
-       * [-]. */
-      double distortion = 0.;
-    };
 
     /**
-     * The revisited Charmetant law of the paper (Eq. 1-4, Table 1):
-     * \f[
-     *   W = \tfrac12 k_e I_e^2 + k_{tc}|I_{tc}|^p + \tfrac12 k_{td} I_{td}^2,
-     * \f]
-     * with the NaN-free evaluation of doc/theory.md section 1.4: the
-     * distortion measure comes from the Schur complement of C on the
-     * section plane, \f$I_{td} = \tfrac12\mathrm{asinh}(s)\f$, and never
-     * from \f$\mathrm{acosh}\,\zeta\f$.
+     * The laws, one entry X(law type, class, member of Parameters with
+     * its parameters) each: with_law() selects from it, and the force loop
+     * (cell_kernel.cc) and the model's members in fe_observables.cc are
+     * instantiated from it.
      */
-    class CharmetantLaw
+#define YARN_IMPACT_FE_FOR_EACH_LAW(X)     \
+  X(charmetant, CharmetantLaw, charmetant) \
+  X(linear_transversely_isotropic, LinearTransverselyIsotropicLaw, linear)
+
+    /** Compile-time check that @p Law provides what the constitutive-law
+     * contract asks for (see the page above). */
+    template <class Law>
+    constexpr bool
+    check_law_contract()
     {
-    public:
-      /** @param parameters the moduli @param density [kg/m^3] */
-      CharmetantLaw(const CharmetantParameters &parameters,
-                    const double density);
-
-      /**
-       * First Piola-Kirchhoff stress and energy density.
-       * @param F deformation gradient (row-major)
-       * @param P first Piola-Kirchhoff stress [Pa] (output, row-major)
-       * @param inv invariants (output)
-       * @return strain energy density W [J/m^3]
-       */
-      double
-      stress(const Matrix3 &F, Matrix3 &P, Invariants &inv) const;
-
-      /**
-       * Second Piola-Kirchhoff stress S = 2 dW/dC from the right
-       * Cauchy-Green tensor (row-major, symmetric) and J = det F.
-       * @return W [J/m^3]
-       */
-      double
-      second_piola(const Matrix3 &C,
-                   const double J,
-                   Matrix3 &S,
-                   Invariants &inv) const;
-
-      /**
-       * Energy density as a function of C, templated so that it can be
-       * differentiated automatically (tests compare S with 2 dW/dC).
-       * @param C right Cauchy-Green tensor (row-major)
-       */
-      template <typename Number>
-      Number
-      energy(const Number (&C)[9]) const;
-
-      /**
-       * The stress and energy evaluated for a scalar (V = double) or for
-       * four Gauss points at once (V = internal::Double4): the same code,
-       * so the unit tests of the scalar path cover the vector one.
-       * @param F deformation gradient (row-major)
-       * @param P first Piola-Kirchhoff stress [Pa] (output)
-       * @param Ie, Itc, Itd the invariants (output)
-       * @return W [J/m^3]
-       */
-      template <typename V>
-      V
-      stress_kernel(const V (&F)[9], V (&P)[9], V &Ie, V &Itc, V &Itd) const;
-
-      /** Second Piola-Kirchhoff stress from C and J = det F, as
-       * stress_kernel(). */
-      template <typename V>
-      V
-      second_piola_kernel(const V (&C)[9],
-                          const V J,
-                          V (&S)[9],
-                          V &Ie,
-                          V &Itc,
-                          V &Itd) const;
-
-      /** Small-strain axial modulus k_e [Pa]. */
-      double
-      axial_modulus() const
-      {
-        return k_e;
-      }
-
-      /** Modulus of the transverse P wave at a compaction state,
-       * \f$K_T(I_{tc}) + k_{td}/4\f$ with \f$K_T = p(p-1)k_{tc}/4
-       * |I_{tc}|^{p-2}\f$ (doc/theory.md section 1.6), bounded at the
-       * reference state by its value at |I_tc| = 1e-3 [Pa]. */
-      double
-      transverse_modulus(const Invariants &inv) const;
-
-      /** Uniaxial nominal stress \f$P(\varepsilon) = k_e
-       * \ln(1+\varepsilon)/(1+\varepsilon)\f$ [Pa]. */
-      double
-      uniaxial_nominal_stress(const double strain) const
-      {
-        return k_e * std::log1p(strain) / (1. + strain);
-      }
-
-      /** Density [kg/m^3]. */
-      double density;
-
-    private:
-      double k_e, k_tc, p, k_td;
-    };
-
+      const Law *law = nullptr;
+      static_assert(
+        std::is_same_v<decltype(law->stress(std::declval<const Matrix3 &>(),
+                                            std::declval<Matrix3 &>(),
+                                            std::declval<Invariants &>())),
+                       double>,
+        "a law needs double stress(F, P, inv) const");
+      static_assert(
+        std::is_convertible_v<decltype(law->axial_modulus()), double>,
+        "a law needs double axial_modulus() const");
+      static_assert(std::is_convertible_v<decltype(law->transverse_modulus(
+                                            std::declval<Invariants>())),
+                                          double>,
+                    "a law needs double transverse_modulus(inv) const");
+      static_assert(
+        std::is_convertible_v<decltype(law->uniaxial_nominal_stress(0.)),
+                              double>,
+        "a law needs double uniaxial_nominal_stress(strain) const");
+      static_assert(std::is_convertible_v<decltype(law->density), double>,
+                    "a law needs a density [kg/m^3]");
+      static_assert(std::is_same_v<decltype(Law::vectorised), const bool>,
+                    "a law says whether it has a Double4 stress_kernel");
+      static_assert(std::is_copy_constructible_v<Law>,
+                    "a law must be copyable");
+      return true;
+    }
 
     /**
-     * The classical linear transversely isotropic yarn law, fibre direction
-     * x, in St. Venant-Kirchhoff form: \f$S = \mathbb{C} : E\f$ with the
-     * Green-Lagrange strain E. With the default null Poisson ratios the
-     * section does not react to axial strain: the paper's point.
+     * The law chosen by `parameters.law`, built from its parameters and
+     * @p density [kg/m^3] and handed to @p visitor; returns what the
+     * visitor returns (the same type for every law).
      */
-    class LinearTransverselyIsotropicLaw
+    template <class Visitor>
+    auto
+    with_law(const Parameters &parameters,
+             const double density,
+             Visitor &&visitor)
     {
-    public:
-      /** @param parameters the moduli @param density [kg/m^3] */
-      LinearTransverselyIsotropicLaw(const LinearParameters &parameters,
-                                     const double density);
-
-      /** First Piola-Kirchhoff stress and energy density, as
-       * CharmetantLaw::stress(); the invariants are filled too. */
-      double
-      stress(const Matrix3 &F, Matrix3 &P, Invariants &inv) const;
-
-      /** Axial P-wave modulus \f$\mathbb{C}_{1111}\f$ [Pa]. */
-      double
-      axial_modulus() const
-      {
-        return C11;
-      }
-
-      /** Transverse P-wave modulus \f$\mathbb{C}_{2222}\f$ [Pa]. */
-      double
-      transverse_modulus(const Invariants &) const
-      {
-        return C22;
-      }
-
-      /** Uniaxial nominal stress of the SVK bar under free lateral
-       * contraction, \f$P = E_L (\varepsilon + \varepsilon^2/2)
-       * (1+\varepsilon)\f$ [Pa] (exact for null Poisson ratios). */
-      double
-      uniaxial_nominal_stress(const double strain) const
-      {
-        return E_L * (strain + 0.5 * strain * strain) * (1. + strain);
-      }
-
-      /** Density [kg/m^3]. */
-      double density;
-
-    private:
-      double E_L;
-      /** Stiffness in Voigt form (x = 1, y = 2, z = 3). */
-      double C11, C12, C22, C23, G12, G23;
-    };
-
-    // The lane functions pass Double4 by value; they are inline, so the
-    // ABI note of GCC about AVX vectors does not apply.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
-    namespace internal
-    {
-      /**
-       * Four doubles in one SIMD register (GCC vector extension): the FE
-       * force loop evaluates the law at four Gauss points at once. On CPUs
-       * without AVX the compiler splits it into two SSE2 halves.
-       */
-      typedef double Double4 __attribute__((vector_size(32)));
-
-      // Lane-wise functions, for double and Double4 alike.
-      inline double
-      lane_log(const double x)
-      {
-        return std::log(x);
-      }
-      inline double
-      lane_sqrt(const double x)
-      {
-        return std::sqrt(x);
-      }
-      inline double
-      lane_abs(const double x)
-      {
-        return std::abs(x);
-      }
-      /** x^e for x > 0, 0 for x = 0; exp(e ln x) costs less than glibc's
-       * pow and is accurate to a few ulp here. */
-      inline double
-      lane_pow(const double x, const double e)
-      {
-        return x > 0. ? std::exp(e * std::log(x)) : 0.;
-      }
-      /** 1 for x >= 0, -1 otherwise. */
-      inline double
-      lane_sign(const double x)
-      {
-        return x >= 0. ? 1. : -1.;
-      }
-      /** asinh(s)/s: its Taylor series in s^2 up to s^16 is exact to
-       * round-off for s < 0.1 (the usual range) and needs no division. */
-      inline double
-      lane_asinh_ratio(const double s, const double s2)
-      {
-        if (s >= 0.1)
-          return std::asinh(s) / s;
-        return 1. +
-               s2 *
-                 (-1. / 6. +
-                  s2 *
-                    (3. / 40. +
-                     s2 * (-5. / 112. +
-                           s2 * (35. / 1152. +
-                                 s2 * (-63. / 2816. +
-                                       s2 * (231. / 13312. +
-                                             s2 * (-143. / 10240. +
-                                                   s2 * 6435. / 557056.)))))));
-      }
-
-#define YARN_IMPACT_LANEWISE(name, expression) \
-  inline Double4 name(const Double4 x)         \
-  {                                            \
-    Double4 r;                                 \
-    for (unsigned int l = 0; l < 4; ++l)       \
-      r[l] = expression;                       \
-    return r;                                  \
-  }
-      YARN_IMPACT_LANEWISE(lane_log, std::log(x[l]))
-      YARN_IMPACT_LANEWISE(lane_sqrt, std::sqrt(x[l]))
-      YARN_IMPACT_LANEWISE(lane_abs, std::abs(x[l]))
-      YARN_IMPACT_LANEWISE(lane_sign, x[l] >= 0. ? 1. : -1.)
-#undef YARN_IMPACT_LANEWISE
-      inline Double4
-      lane_pow(const Double4 x, const double e)
-      {
-        Double4 r;
-        for (unsigned int l = 0; l < 4; ++l)
-          r[l] = lane_pow(x[l], e);
-        return r;
-      }
-      inline Double4
-      lane_asinh_ratio(const Double4 s, const Double4 s2)
-      {
-        Double4 r;
-        for (unsigned int l = 0; l < 4; ++l)
-          r[l] = lane_asinh_ratio(s[l], s2[l]);
-        return r;
-      }
-
-      /** det F of a row-major 3x3 matrix. */
-      template <typename V>
-      inline V
-      determinant(const V (&F)[9])
-      {
-        return F[0] * (F[4] * F[8] - F[5] * F[7]) -
-               F[1] * (F[3] * F[8] - F[5] * F[6]) +
-               F[2] * (F[3] * F[7] - F[4] * F[6]);
-      }
-
-      /** C = F^T F (row-major, symmetric); returns J = det F. */
-      template <typename V>
-      inline V
-      right_cauchy_green(const V (&F)[9], V (&C)[9])
-      {
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = i; j < 3; ++j)
-            {
-              const V c =
-                F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
-              C[3 * i + j] = c;
-              C[3 * j + i] = c;
-            }
-        return determinant(F);
-      }
-
-      /** P = F S for a symmetric S. */
-      template <typename V>
-      inline void
-      first_piola(const V (&F)[9], const V (&S)[9], V (&P)[9])
-      {
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = 0; j < 3; ++j)
-            P[3 * i + j] = F[3 * i] * S[j] + F[3 * i + 1] * S[3 + j] +
-                           F[3 * i + 2] * S[6 + j];
-      }
-    } // namespace internal
-
-
-    template <typename V>
-    inline V
-    CharmetantLaw::second_piola_kernel(const V (&C)[9],
-                                       const V J,
-                                       V (&S)[9],
-                                       V &Ie,
-                                       V &Itc,
-                                       V &Itd) const
-    {
-      using namespace internal;
-      const V I4     = C[0];
-      const V I1     = C[0] + C[4] + C[8];
-      const V I5     = C[0] * C[0] + C[1] * C[1] + C[2] * C[2];
-      const V I3     = J * J;
-      const V inv_I4 = 1. / I4;
-      const V inv_I3 = 1. / I3;
-
-      // Inverse of C from its cofactors.
-      const V Ci00 = (C[4] * C[8] - C[5] * C[5]) * inv_I3;
-      const V Ci01 = (C[2] * C[5] - C[1] * C[8]) * inv_I3;
-      const V Ci02 = (C[1] * C[5] - C[2] * C[4]) * inv_I3;
-      const V Ci11 = (C[0] * C[8] - C[2] * C[2]) * inv_I3;
-      const V Ci12 = (C[1] * C[2] - C[0] * C[5]) * inv_I3;
-      const V Ci22 = (C[0] * C[4] - C[1] * C[1]) * inv_I3;
-
-      const V log_I4 = lane_log(I4);
-      Ie             = 0.5 * log_I4;
-      Itc            = 0.5 * lane_log(J) - 0.25 * log_I4;
-      const V a_tc   = lane_abs(Itc);
-      // |I_tc|^(p-1), computed once for the stress and the energy.
-      const V pow_pm1 = lane_pow(a_tc, p - 1.);
-      const V gp      = (p * k_tc) * pow_pm1 * lane_sign(Itc);
-
-      // Distortion from the Schur complement of C on the section plane,
-      // which stays accurate as s -> 0 (doc/theory.md section 1.4).
-      const V t11 = C[4] - C[1] * C[1] * inv_I4;
-      const V t22 = C[8] - C[2] * C[2] * inv_I4;
-      const V t12 = C[5] - C[1] * C[2] * inv_I4;
-      const V s2 =
-        ((t11 - t22) * (t11 - t22) + 4. * t12 * t12) * (0.25 * I4 * inv_I3);
-      const V s   = lane_sqrt(s2);
-      const V psi = lane_asinh_ratio(s, s2);
-      Itd         = 0.5 * s * psi;
-
-      const V inv_2rt = 0.5 / (lane_abs(J) * lane_sqrt(I4));
-      const V zeta    = (I1 * I4 - I5) * inv_2rt;
-      const V half_z  = 0.5 * zeta;
-      // d zeta / dC, entry by entry (M = e_x, CM = first column of C).
-      const V dz00 = (I4 + I1 - 2. * C[0]) * inv_2rt - half_z * (Ci00 + inv_I4);
-      const V dz01 = (-C[1]) * inv_2rt - half_z * Ci01;
-      const V dz02 = (-C[2]) * inv_2rt - half_z * Ci02;
-      const V dz11 = I4 * inv_2rt - half_z * Ci11;
-      const V dz12 = -half_z * Ci12;
-      const V dz22 = I4 * inv_2rt - half_z * Ci22;
-
-      const V a = 0.5 * gp;
-      const V b = (0.5 * k_td) * psi;
-      S[0]      = k_e * Ie * inv_I4 + a * (Ci00 - inv_I4) + b * dz00;
-      S[1] = S[3] = a * Ci01 + b * dz01;
-      S[2] = S[6] = a * Ci02 + b * dz02;
-      S[4]        = a * Ci11 + b * dz11;
-      S[5] = S[7] = a * Ci12 + b * dz12;
-      S[8]        = a * Ci22 + b * dz22;
-
-      return 0.5 * k_e * Ie * Ie + k_tc * pow_pm1 * a_tc +
-             0.5 * k_td * Itd * Itd;
-    }
-
-
-#pragma GCC diagnostic pop
-
-    template <typename V>
-    inline V
-    CharmetantLaw::stress_kernel(const V (&F)[9],
-                                 V (&P)[9],
-                                 V &Ie,
-                                 V &Itc,
-                                 V &Itd) const
-    {
-      V C[9], S[9];
-      const V J = internal::right_cauchy_green(F, C);
-      const V W = second_piola_kernel(C, J, S, Ie, Itc, Itd);
-      internal::first_piola(F, S, P);
-      return W;
-    }
-
-
-    inline double
-    CharmetantLaw::second_piola(const Matrix3 &C,
-                                const double J,
-                                Matrix3 &S,
-                                Invariants &inv) const
-    {
-      return second_piola_kernel(C,
-                                 J,
-                                 S,
-                                 inv.elongation,
-                                 inv.compaction,
-                                 inv.distortion);
-    }
-
-
-    inline double
-    CharmetantLaw::stress(const Matrix3 &F, Matrix3 &P, Invariants &inv) const
-    {
-      return stress_kernel(F,
-                           P,
-                           inv.elongation,
-                           inv.compaction,
-                           inv.distortion);
-    }
-
-
-    /** Compute the invariants of the Charmetant law from F (row-major). */
-    Invariants
-    charmetant_invariants(const Matrix3 &F);
-
-
-    template <typename Number>
-    Number
-    CharmetantLaw::energy(const Number (&C)[9]) const
-    {
-      using std::abs;
-      using std::asinh;
-      using std::log;
-      using std::pow;
-      using std::sqrt;
-      // Symmetric parts, so that d/dC_ij of this expression is the
-      // derivative with respect to a symmetric tensor.
-      const Number c00 = C[0], c11 = C[4], c22 = C[8];
-      const Number c01 = 0.5 * (C[1] + C[3]);
-      const Number c02 = 0.5 * (C[2] + C[6]);
-      const Number c12 = 0.5 * (C[5] + C[7]);
-      const Number I4  = c00;
-      const Number I3  = c00 * (c11 * c22 - c12 * c12) -
-                        c01 * (c01 * c22 - c12 * c02) +
-                        c02 * (c01 * c12 - c11 * c02);
-      const Number Ie  = 0.5 * log(I4);
-      const Number Itc = 0.25 * log(I3 / I4);
-      const Number t11 = c11 - c01 * c01 / I4;
-      const Number t22 = c22 - c02 * c02 / I4;
-      const Number t12 = c12 - c01 * c02 / I4;
-      const Number s2 =
-        ((t11 - t22) * (t11 - t22) + 4. * t12 * t12) / (4. * I3 / I4);
-      const Number Itd = 0.5 * asinh(sqrt(s2));
-      return 0.5 * k_e * Ie * Ie + k_tc * pow(abs(Itc), p) +
-             0.5 * k_td * Itd * Itd;
+      switch (parameters.law)
+        {
+#define YARN_IMPACT_FE_SELECT_LAW(type, Law, member) \
+  case LawType::type:                                \
+    static_assert(check_law_contract<Law>());        \
+    return visitor(Law(parameters.member, density));
+          YARN_IMPACT_FE_FOR_EACH_LAW(YARN_IMPACT_FE_SELECT_LAW)
+#undef YARN_IMPACT_FE_SELECT_LAW
+        }
+      throw std::logic_error("FE: a constitutive law without a selector entry");
     }
   } // namespace FE
 } // namespace YarnImpact

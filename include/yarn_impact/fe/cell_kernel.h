@@ -1,0 +1,143 @@
+#ifndef yarn_impact_fe_cell_kernel_h
+#define yarn_impact_fe_cell_kernel_h
+
+#include <yarn_impact/fe/kinematics.h>
+#include <yarn_impact/fe/simd.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <vector>
+
+namespace YarnImpact
+{
+  namespace FE
+  {
+    /** Vertices of a Q1 hexahedron. */
+    constexpr unsigned int n_nodes = 8;
+    /** Gauss points of a cell (2x2x2). */
+    constexpr unsigned int n_q = 8;
+    /** Degrees of freedom of a cell: 3 per vertex, dof 3a + d is vertex a,
+     * direction d. */
+    constexpr unsigned int n_cell_dofs = 3 * n_nodes;
+    /** Shape-gradient values stored per cell. */
+    constexpr unsigned int grad_size = n_q * n_nodes * 3;
+    /** Shape-gradient values of one block of internal::n_lanes Gauss
+     * points. */
+    constexpr unsigned int gradient_block_size =
+      n_nodes * 3 * internal::n_lanes;
+
+    /**
+     * Where the gradient of the shape function of vertex @p a in direction
+     * @p d at lane @p l of a block lies within the block. The blocks of
+     * internal::n_lanes Gauss points are stored one after the other,
+     * [block][vertex][direction][lane], so that the vectorised loop loads
+     * the four Gauss points of a block as one Double4.
+     */
+    constexpr unsigned int
+    lane_gradient_index(const unsigned int a,
+                        const unsigned int d,
+                        const unsigned int l)
+    {
+      return (3 * a + d) * internal::n_lanes + l;
+    }
+
+    /** Where the gradient of the shape function of vertex @p a in
+     * direction @p d at Gauss point @p q lies among a cell's grad_size
+     * values (see lane_gradient_index()). */
+    constexpr unsigned int
+    gradient_index(const unsigned int q,
+                   const unsigned int a,
+                   const unsigned int d)
+    {
+      return (q / internal::n_lanes) * gradient_block_size +
+             lane_gradient_index(a, d, q % internal::n_lanes);
+    }
+
+    /** The shape gradients of Gauss point @p q of a cell, g[3a + d]
+     * [1/m], from the cell's stored values @p grad. */
+    inline void
+    gather_gradients(const double *grad,
+                     const unsigned int q,
+                     double (&g)[n_nodes * 3])
+    {
+      for (unsigned int a = 0; a < n_nodes; ++a)
+        for (unsigned int d = 0; d < 3; ++d)
+          g[3 * a + d] = grad[gradient_index(q, a, d)];
+    }
+
+    /** F = I + sum_a u_a (x) grad N_a at one Gauss point, from the nodal
+     * displacements u [m] and the shape gradients g [1/m] (both 3a + d). */
+    inline void
+    deformation_gradient(const double *u, const double *g, Matrix3 &F)
+    {
+      F[0] = F[4] = F[8] = 1.;
+      F[1] = F[2] = F[3] = F[5] = F[6] = F[7] = 0.;
+      for (unsigned int a = 0; a < n_nodes; ++a)
+        {
+          const double g0 = g[3 * a], g1 = g[3 * a + 1], g2 = g[3 * a + 2];
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              const double ui = u[3 * a + i];
+              F[3 * i] += ui * g0;
+              F[3 * i + 1] += ui * g1;
+              F[3 * i + 2] += ui * g2;
+            }
+        }
+    }
+
+    /**
+     * The owned cells as the internal-force loop sees them, cell c at
+     * c * n_cell_dofs, c * grad_size, c * n_q in the flat arrays, and what
+     * the loop keeps of each.
+     */
+    struct CellData
+    {
+      /** Local indices (in deal.II's distributed vectors) of the dofs. */
+      std::vector<unsigned int> dofs;
+      /** Shape gradients [1/m], laid out as gradient_index() says. */
+      std::vector<double> grads;
+      /** Gauss weights times Jacobians [m^3]. */
+      std::vector<double> JxW;
+      /** 1 once the cell has broken or been eroded: it carries no force. */
+      std::vector<unsigned char> failed;
+      /** Largest ln(lambda_f) over the Gauss points: the strains are
+       * expm1() of it, taken only where they are reported. */
+      std::vector<double> log_stretch;
+      /** Mean ln(lambda_f) over the Gauss points. */
+      std::vector<double> mean_log_stretch;
+      /** Largest |I_tc| over the Gauss points (stable time step). */
+      std::vector<double> compaction;
+
+      /** Number of cells. */
+      unsigned int
+      size() const
+      {
+        return failed.size();
+      }
+    };
+
+    /**
+     * The internal forces of all unbroken cells of @p cells at the
+     * displacement @p displacement [m] (ghosts up to date): subtracts each
+     * cell's forces [N] from @p force's local entries (the caller
+     * compresses) and returns the strain energy [J] of the cells. With
+     * @p failure, a cell breaks when its largest ln(lambda_f) exceeds
+     * @p failure_log_stretch, and is eroded when inverted or crushed; its
+     * strain energy [J] goes to @p dissipated.
+     *
+     * Instantiated for each law of YARN_IMPACT_FE_FOR_EACH_LAW.
+     */
+    template <class Law>
+    double
+    internal_forces(
+      const Law &law,
+      CellData &cells,
+      const dealii::LinearAlgebra::distributed::Vector<double> &displacement,
+      dealii::LinearAlgebra::distributed::Vector<double> &force,
+      const bool failure,
+      const double failure_log_stretch,
+      double &dissipated);
+  } // namespace FE
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,295 @@
+#include <yarn_impact/analysis/wave_fronts.h>
+#include <yarn_impact/fe/constitutive_law.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/fe/mapping_q_eulerian.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "yarn_model.h"
+
+namespace YarnImpact
+{
+  namespace FE
+  {
+    using namespace dealii;
+
+
+    template <class Law>
+    Observables
+    YarnModel<Law>::observables() const
+    {
+      Observables o;
+      double kinetic = 0.;
+      {
+        const unsigned int n  = velocity.locally_owned_size();
+        const double *const v = velocity.begin();
+        const double *const m = lumped_mass.begin();
+        for (unsigned int i = 0; i < n; ++i)
+          kinetic += 0.5 * m[i] * v[i] * v[i];
+      }
+      double local[4] = {kinetic, elastic_energy, contact.energy(), dissipated};
+      double global[4];
+      Utilities::MPI::sum(ArrayView<const double>(local, 4),
+                          communicator,
+                          ArrayView<double>(global, 4));
+      o.kinetic_energy    = symmetry * global[0];
+      o.elastic_energy    = symmetry * global[1];
+      o.contact_energy    = symmetry * global[2];
+      o.dissipated_energy = symmetry * global[3];
+
+      double max_strain     = 0.;
+      unsigned int n_failed = 0;
+      for (unsigned int c = 0; c < cell_index.size(); ++c)
+        if (cells.failed[c])
+          ++n_failed;
+        else
+          max_strain = std::max(max_strain, std::expm1(cells.log_stretch[c]));
+      o.max_strain = Utilities::MPI::max(max_strain, communicator);
+      o.n_failed   = static_cast<unsigned long>(symmetry) *
+                   Utilities::MPI::sum(n_failed, communicator);
+
+      // Station profile: maxima in one array, sums in another.
+      const unsigned int n = n_stations;
+      // The station's strain is the volume average over the cells that
+      // touch its node layer: the yarn's strain T / EA. Fibres of one
+      // section are not coupled in longitudinal shear (G_LT = 0), so the
+      // largest strain in a section can be well above it.
+      std::vector<double> maxima(3 * n, -std::numeric_limits<double>::max());
+      // Sums: |x|, count, strain x volume, volume, volume x z^2 and
+      // deformed volume per station.
+      std::vector<double> sums(6 * n, 0.);
+      for (unsigned int c = 0; c < cell_index.size(); ++c)
+        {
+          if (cells.failed[c])
+            continue;
+          const unsigned int *dofs = &cells.dofs[c * n_cell_dofs];
+          // The deformed cell's volume and its second moment of z (2x2x2
+          // Gauss points of the trilinear map, vertices numbered
+          // i + 2j + 4k): each of its two node layers gets them whole.
+          double p[n_nodes][3];
+          vertex_positions(c, p);
+          double vz2 = 0., vol = 0.;
+          const double g[2] = {0.5 - 0.5 / std::sqrt(3.),
+                               0.5 + 0.5 / std::sqrt(3.)};
+          for (unsigned int q = 0; q < 8; ++q)
+            {
+              const double xi[3] = {g[q & 1], g[(q >> 1) & 1], g[(q >> 2) & 1]};
+              double J[3][3] = {}, zq = 0.;
+              for (unsigned int a = 0; a < n_nodes; ++a)
+                {
+                  double N = 1., dN[3] = {1., 1., 1.};
+                  for (unsigned int d = 0; d < 3; ++d)
+                    {
+                      const bool hi   = (a >> d) & 1;
+                      const double nd = hi ? xi[d] : 1. - xi[d];
+                      N *= nd;
+                      for (unsigned int e = 0; e < 3; ++e)
+                        dN[e] *= (e == d ? (hi ? 1. : -1.) : nd);
+                    }
+                  zq += N * p[a][2];
+                  for (unsigned int i = 0; i < 3; ++i)
+                    for (unsigned int e = 0; e < 3; ++e)
+                      J[i][e] += p[a][i] * dN[e];
+                }
+              const double detJ =
+                std::abs(J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+                         J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]));
+              vz2 += 0.125 * detJ * zq * zq;
+              vol += 0.125 * detJ;
+            }
+          for (unsigned int a = 0; a < n_nodes; ++a)
+            {
+              const unsigned int s = static_cast<unsigned int>(std::round(
+                std::abs(reference_coordinate[dofs[3 * a]]) / station_spacing));
+              // Each cell has four vertices on each of its two layers.
+              sums[2 * n + s] +=
+                0.25 * cell_volume[c] * std::expm1(cells.mean_log_stretch[c]);
+              sums[3 * n + s] += 0.25 * cell_volume[c];
+              sums[4 * n + s] += 0.25 * vz2;
+              sums[5 * n + s] += 0.25 * vol;
+            }
+        }
+      for (unsigned int k = 0; k < nodes.size(); ++k)
+        {
+          const auto &node     = nodes[k];
+          const unsigned int s = node_station[k];
+          const double x =
+            reference_coordinate[node[0]] + displacement.local_element(node[0]);
+          const double z =
+            reference_coordinate[node[2]] + displacement.local_element(node[2]);
+          maxima[s] = std::max(maxima[s], -displacement.local_element(node[1]));
+          maxima[n + s]     = std::max(maxima[n + s], z);
+          maxima[2 * n + s] = std::max(maxima[2 * n + s], -z);
+          sums[s] += std::abs(x);
+          sums[n + s] += 1.;
+        }
+      Utilities::MPI::max(maxima, communicator, maxima);
+      Utilities::MPI::sum(sums, communicator, sums);
+
+      const bool quarter =
+        shared.general.symmetry == YarnImpact::Parameters::Symmetry::quarter;
+      Analysis::StationProfile profile;
+      profile.resize(n);
+      for (unsigned int s = 0; s < n; ++s)
+        {
+          profile.position[s] = sums[s] / std::max(sums[n + s], 1.);
+          profile.axial_strain[s] =
+            sums[2 * n + s] / std::max(sums[3 * n + s], 1e-300);
+          profile.deflection[s] = maxima[s];
+          profile.width[s] =
+            quarter ? 2. * maxima[n + s] : maxima[n + s] + maxima[2 * n + s];
+          profile.rms_width[s] =
+            4. * std::sqrt(sums[4 * n + s] / std::max(sums[5 * n + s], 1e-300));
+        }
+      if (initial_width[0] == 0.)
+        const_cast<std::vector<double> &>(initial_width) = profile.width;
+      profile.initial_width = initial_width;
+
+      o.fronts = Analysis::measure_wave_fronts(profile, shared.wave_fronts);
+      return o;
+    }
+
+
+    template <class Law>
+    bool
+    YarnModel<Law>::yarn_cut_through() const
+    {
+      std::vector<unsigned int> failed(n_layers, 0);
+      bool any = false;
+      for (unsigned int c = 0; c < cell_index.size(); ++c)
+        if (cells.failed[c])
+          {
+            failed[std::min(cell_layer[c], n_layers - 1)] += 1;
+            any = true;
+          }
+      if (!Utilities::MPI::logical_or(any, communicator))
+        return false;
+      Utilities::MPI::sum(failed, communicator, failed);
+      for (const unsigned int n : failed)
+        if (n >= cells_per_layer)
+          return true;
+      return false;
+    }
+
+
+    template <class Law>
+    std::string
+    YarnModel<Law>::write_snapshot(const std::string &directory,
+                                   const unsigned int index,
+                                   const double) const
+    {
+      displacement.update_ghost_values();
+      velocity.update_ghost_values();
+      const unsigned int n_cells  = tria.n_active_cells();
+      const char *names[]         = {"I_e",
+                                     "I_tc",
+                                     "I_td",
+                                     "longitudinal_strain",
+                                     "cauchy_xx",
+                                     "cauchy_yy",
+                                     "cauchy_zz",
+                                     "cauchy_xy",
+                                     "cauchy_xz",
+                                     "cauchy_yz",
+                                     "failed",
+                                     "mpi_rank"};
+      const unsigned int n_fields = sizeof(names) / sizeof(names[0]);
+      std::vector<Vector<float>> fields(n_fields, Vector<float>(n_cells));
+      const float rank = Utilities::MPI::this_mpi_process(communicator);
+      for (unsigned int c = 0; c < cell_index.size(); ++c)
+        {
+          const unsigned int id    = cell_index[c];
+          const unsigned int *dofs = &cells.dofs[c * n_cell_dofs];
+          double u[n_cell_dofs];
+          for (unsigned int k = 0; k < n_cell_dofs; ++k)
+            u[k] = displacement.local_element(dofs[k]);
+          double sums[10] = {};
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              Matrix3 F, P;
+              double g[n_nodes * 3];
+              gather_gradients(&cells.grads[c * grad_size], q, g);
+              deformation_gradient(u, g, F);
+              Invariants inv;
+              law.stress(F, P, inv);
+              inv = charmetant_invariants(F);
+              // Cauchy stress sigma = P F^T / J.
+              const double J = internal::determinant(F);
+              double sigma[9];
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int j = 0; j < 3; ++j)
+                  sigma[3 * i + j] =
+                    (P[3 * i] * F[3 * j] + P[3 * i + 1] * F[3 * j + 1] +
+                     P[3 * i + 2] * F[3 * j + 2]) /
+                    J;
+              const double values[10] = {inv.elongation,
+                                         inv.compaction,
+                                         inv.distortion,
+                                         0.,
+                                         sigma[0],
+                                         sigma[4],
+                                         sigma[8],
+                                         sigma[1],
+                                         sigma[2],
+                                         sigma[5]};
+              for (unsigned int k = 0; k < 10; ++k)
+                sums[k] += values[k] / n_q;
+            }
+          if (cells.failed[c])
+            for (unsigned int k = 4; k < 10; ++k)
+              sums[k] = 0.;
+          sums[3] = std::expm1(cells.log_stretch[c]);
+          for (unsigned int k = 0; k < 10; ++k)
+            fields[k][id] = sums[k];
+          fields[10][id] = cells.failed[c];
+          fields[11][id] = rank;
+        }
+
+      DataOut<3> data_out;
+      data_out.attach_dof_handler(dof_handler);
+      const std::vector<
+        DataComponentInterpretation::DataComponentInterpretation>
+        vector_field(3,
+                     DataComponentInterpretation::component_is_part_of_vector);
+      data_out.add_data_vector(displacement,
+                               std::vector<std::string>(3, "displacement"),
+                               DataOut<3>::type_dof_data,
+                               vector_field);
+      data_out.add_data_vector(velocity,
+                               std::vector<std::string>(3, "velocity"),
+                               DataOut<3>::type_dof_data,
+                               vector_field);
+      for (unsigned int k = 0; k < n_fields; ++k)
+        data_out.add_data_vector(fields[k],
+                                 names[k],
+                                 DataOut<3>::type_cell_data);
+      // The geometry written is the deformed one.
+      MappingQEulerian<3, VectorType> mapping(1, dof_handler, displacement);
+      data_out.build_patches(mapping);
+      return data_out.write_vtu_with_pvtu_record(directory + "/",
+                                                 "fe",
+                                                 index,
+                                                 communicator,
+                                                 4,
+                                                 0);
+    }
+
+
+    // The members defined here, for each law (those of fe_model.cc are
+    // instantiated by create_model()).
+#define YARN_IMPACT_FE_INSTANTIATE(type, Law, member)                      \
+  template Observables YarnModel<Law>::observables() const;                \
+  template bool YarnModel<Law>::yarn_cut_through() const;                  \
+  template std::string YarnModel<Law>::write_snapshot(const std::string &, \
+                                                      const unsigned int,  \
+                                                      const double) const;
+    YARN_IMPACT_FE_FOR_EACH_LAW(YARN_IMPACT_FE_INSTANTIATE)
+#undef YARN_IMPACT_FE_INSTANTIATE
+  } // namespace FE
+} // namespace YarnImpact

@@ -1,0 +1,194 @@
+#ifndef yarn_impact_source_fe_yarn_model_h
+#define yarn_impact_source_fe_yarn_model_h
+
+// The FE model's class, shared by the source files that define its
+// members (fe_model.cc, fe_observables.cc); not part of the public
+// interface, which is fe/fe_model.h.
+
+#include <yarn_impact/core/impact_model.h>
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/fe/cell_kernel.h>
+#include <yarn_impact/fe/contact.h>
+#include <yarn_impact/fe/parameters.h>
+
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <mpi.h>
+
+#include <array>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace YarnImpact
+{
+  namespace FE
+  {
+    /**
+     * The FE yarn: Q1 hexahedra, 2x2x2 Gauss points, row-sum lumped mass,
+     * explicit central difference driven by ImpactSimulation, penalty
+     * contact with the rigid cylinder (ProjectileContact), cell failure at
+     * a longitudinal strain. The force loop (internal_forces()) works on
+     * pre-computed shape gradients and local indices into deal.II's
+     * distributed vectors. A template on the constitutive law, so that
+     * the law inlines into that loop (constitutive_law.h).
+     *
+     * Set-up, step phases and create_model() are in fe_model.cc;
+     * observables and output in fe_observables.cc.
+     */
+    template <class Law>
+    class YarnModel : public ImpactModel
+    {
+    public:
+      /** deal.II's distributed vector, with ghosts. */
+      using VectorType = dealii::LinearAlgebra::distributed::Vector<double>;
+
+      /** @param law the constitutive law, density included */
+      YarnModel(const YarnImpact::Parameters::Shared &shared,
+                const Parameters &parameters,
+                const Law &law,
+                const MPI_Comm communicator);
+
+      /** "fe". */
+      std::string
+      name() const override
+      {
+        return "fe";
+      }
+
+      /** Mesh, dofs, lumped mass, constraints, contact nodes; reports the
+       * mesh and the contact step to @p out. */
+      void
+      setup(const Projectile &projectile, std::ostream &out) override;
+
+      /** Highest reference y of the yarn [m]. */
+      double
+      yarn_top() const override
+      {
+        return top;
+      }
+
+      /** Stable explicit step [s] of the current (deformed) mesh and of
+       * the contact springs. */
+      double
+      stable_time_step() const override;
+
+      /** Internal and contact forces at the current state; returns the
+       * yarn's force on the projectile along y [N], whole yarn. */
+      double
+      compute_forces(const Projectile &projectile, const double dt) override;
+
+      /** v += dt M^-1 f over the step @p dt [s]. */
+      void
+      kick(const double dt) override;
+
+      /** u += dt v over the step @p dt [s]. */
+      void
+      drift(const double dt) override;
+
+      /** Energies [J], strains, failed cells and the station profile of
+       * the whole yarn. Collective. */
+      Observables
+      observables() const override;
+
+      /** Whether some cell layer has broken through. Collective. */
+      bool
+      yarn_cut_through() const override;
+
+      /** Density, area and axial law of the discretised yarn (Smith). */
+      AxialProperties
+      axial_properties() const override;
+
+      /** Mass of the whole yarn [kg]. */
+      double
+      mass() const override
+      {
+        return total_mass;
+      }
+
+      /** Write the deformed mesh with cell fields as VTU in
+       * @p directory; returns the record's file name. */
+      std::string
+      write_snapshot(const std::string &directory,
+                     const unsigned int index,
+                     const double time) const override;
+
+      /** Number of cells of the modelled part. */
+      unsigned long
+      n_elements() const override
+      {
+        return tria.n_global_active_cells();
+      }
+
+    private:
+      /** Current positions [m] of the 8 vertices of owned cell c. */
+      void
+      vertex_positions(const unsigned int c, double (&p)[n_nodes][3]) const;
+
+      const YarnImpact::Parameters::Shared &shared;
+      const Parameters parameters;
+      const Law law;
+      const MPI_Comm communicator;
+      const double symmetry;
+
+      dealii::parallel::distributed::Triangulation<3> tria;
+      dealii::FESystem<3> fe;
+      dealii::DoFHandler<3> dof_handler;
+
+      mutable VectorType displacement;
+      mutable VectorType velocity;
+      VectorType force;
+      VectorType lumped_mass;
+      VectorType inverse_mass;
+      /** Reference coordinate of each local dof (its own component). */
+      std::vector<double> reference_coordinate;
+
+      /** Owned cells as the force loop sees them. */
+      CellData cells;
+      // Owned cells, besides: active_cell_index, local axis along x,
+      // axial cell layer, reference volume [m^3].
+      std::vector<unsigned int> cell_index;
+      std::vector<unsigned char> cell_axis;
+      std::vector<unsigned int> cell_layer;
+      std::vector<double> cell_volume;
+      /** ln(1 + failure strain): the failure test without expm1 per cell. */
+      double failure_log_stretch = 0.;
+
+      // Owned nodes: local indices of their x, y, z dofs and their station.
+      std::vector<std::array<unsigned int, 3>> nodes;
+      std::vector<unsigned int> node_station;
+      /** The projectile contact of the owned surface nodes. */
+      ProjectileContact contact;
+
+      unsigned int n_stations      = 0;
+      unsigned int n_layers        = 0;
+      unsigned int cells_per_layer = 0;
+      double station_spacing       = 0.;
+      std::vector<double> initial_width;
+      double total_mass        = 0.;
+      double top               = 0.;
+      double contact_time_step = 0.;
+
+      // Energies of the owned part, from the last compute_forces() [J].
+      double elastic_energy = 0.;
+      double dissipated     = 0.;
+    };
+    // Here, not in fe_model.cc: fe_observables.cc calls it too.
+    template <class Law>
+    inline void
+    YarnModel<Law>::vertex_positions(const unsigned int c,
+                                     double (&p)[n_nodes][3]) const
+    {
+      const unsigned int *dofs = &cells.dofs[c * n_cell_dofs];
+      for (unsigned int a = 0; a < n_nodes; ++a)
+        for (unsigned int d = 0; d < 3; ++d)
+          p[a][d] = reference_coordinate[dofs[3 * a + d]] +
+                    displacement.local_element(dofs[3 * a + d]);
+    }
+  } // namespace FE
+} // namespace YarnImpact
+
+#endif
