@@ -1,4 +1,5 @@
 #include <yarn_impact/analysis/wave_fronts.h>
+#include <yarn_impact/core/output_file.h>
 #include <yarn_impact/fe/constitutive_law.h>
 
 #include <deal.II/base/mpi.h>
@@ -272,12 +273,31 @@ namespace YarnImpact
       // The geometry written is the deformed one.
       MappingQEulerian<3, VectorType> mapping(1, dof_handler, displacement);
       data_out.build_patches(mapping);
-      return data_out.write_vtu_with_pvtu_record(directory + "/",
-                                                 "fe",
-                                                 index,
-                                                 communicator,
-                                                 4,
-                                                 0);
+      // The file names of deal.II's write_vtu_with_pvtu_record (one piece
+      // per rank), each written whole or not at all.
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(communicator);
+      const unsigned int digits =
+        Utilities::needed_digits(std::max(0, int(n_ranks) - 1));
+      const std::string base = "fe_" + Utilities::int_to_string(index, 4);
+      const auto piece       = [&](const unsigned int r) {
+        return base + "." + Utilities::int_to_string(r, digits) + ".vtu";
+      };
+      const unsigned int this_rank =
+        Utilities::MPI::this_mpi_process(communicator);
+      AtomicFile vtu(directory + "/" + piece(this_rank));
+      data_out.write_vtu(vtu.stream());
+      vtu.commit();
+      if (this_rank == 0)
+        {
+          std::vector<std::string> pieces;
+          for (unsigned int r = 0; r < n_ranks; ++r)
+            pieces.push_back(piece(r));
+          AtomicFile record(directory + "/" + base + ".pvtu");
+          data_out.write_pvtu_record(record.stream(), pieces);
+          record.commit();
+        }
+      return base + ".pvtu";
     }
 
 
