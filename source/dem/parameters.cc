@@ -1,5 +1,5 @@
 #include <yarn_impact/core/parameter_tools.h>
-#include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/dem/parameters.h>
 
 #include <deal.II/base/parameter_handler.h>
 

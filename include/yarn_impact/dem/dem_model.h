@@ -3,173 +3,18 @@
 
 #include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/dem/contact_law.h>
-#include <yarn_impact/dem/packing.h>
+#include <yarn_impact/dem/parameters.h>
 
 #include <mpi.h>
 
 #include <memory>
 #include <string>
 
-namespace dealii
-{
-  class ParameterHandler;
-}
-
 namespace YarnImpact
 {
-  /** The microscopic discrete-element reference model (doc/dem.md). */
+
   namespace DEM
   {
-    /** Where the fibre centres come from. */
-    enum class FibreLayout
-    {
-      hexagonal, ///< hexagonal packing inside the (scaled) ellipse
-      file,      ///< (y, z) centres read from a file
-    };
-
-    /**
-     * Parameters of the DEM model (subsection `DEM`); doc/dem.md explains
-     * every default.
-     */
-    struct Parameters
-    {
-      /** Fibre layout (`Fibre layout`). */
-      FibreLayout layout = FibreLayout::hexagonal;
-      /** File with one `y z` fibre centre per line [m] (`Fibre file`). */
-      std::string fibre_file;
-      /** Largest factor by which the ellipse may be enlarged so that the
-       * hexagonal packing holds exactly N fibres [-]. */
-      double max_packing_scale = 1.1;
-      /** Largest distance between two spheres of a fibre [m]. */
-      double sphere_spacing = 12e-6;
-      /** Fibre-fibre normal penalty stiffness over the truss stiffness
-       * \f$EA/L_0\f$ [-]. */
-      double normal_stiffness_ratio = 0.5;
-      /** Tangential over normal contact stiffness [-]. */
-      double tangential_stiffness_ratio = 2. / 7.;
-      /** Fibre-fibre normal damping, fraction of critical [-]. */
-      double damping_ratio = 0.1;
-      /** Fibre-fibre Coulomb friction coefficient [-]. */
-      double friction = 0.2;
-      /** Projectile-fibre normal stiffness over the truss stiffness [-]. */
-      double projectile_stiffness_ratio = 0.5;
-      /** Projectile-fibre normal damping, fraction of critical [-]. */
-      double projectile_damping_ratio = 0.1;
-      /** Projectile-fibre Coulomb friction coefficient [-]. */
-      double projectile_friction = 0.2;
-      /** Verlet skin of the neighbour lists [m]. */
-      double skin = 4e-6;
-      /** Contacts per sphere assumed by the stable time step [-]. */
-      unsigned int coordination = 6;
-      /** Cross-sections copied from each neighbouring rank at the start;
-       * the layer grows by itself when fibres slide across a rank
-       * boundary [-]. */
-      unsigned int ghost_stations = 4;
-      /** Cross-sections per neighbour-list block: each block is rebuilt on
-       * its own when its criterion fails (doc/dem.md section 4) [-]. */
-      unsigned int list_block = 32;
-      /** With half or quarter symmetry and several MPI ranks: the first
-       * rank's slab (which holds the impact point, where contacts are
-       * densest and lists are rebuilt most often) as a fraction of an even
-       * share of the cross-sections; the other ranks share the rest
-       * evenly. Only the speed depends on it [-]. */
-      double impact_slab_share = 0.92;
-      /** On several MPI ranks: when a rank must rebuild a list block, every
-       * rank also rebuilds its blocks whose criterion has used this
-       * fraction of the skin, in the same step (they would fail within a
-       * few steps, each rank on its own, while the others wait); 1
-       * rebuilds only failing blocks. Only the speed depends on it [-]. */
-      double joint_rebuild_fraction = 0.6;
-      /** Verify after every list update, by a sweep over the spheres sorted
-       * along x that knows nothing of the lists, that every pair closer
-       * than the diameter (and every such mirror image) is listed; a
-       * missing pair stops the run. For tests: the sweep makes a run 3
-       * (40 fibres) to 25 (400 fibres) times as long. */
-      bool check_lists = false;
-      /** When a neighbour-list block is rebuilt (doc/dem.md section 4). */
-      enum class ListRebuilds
-      {
-        /** When its displacement bound reaches the skin (sound, cheap). */
-        criterion,
-        /** Only when the sweep of check_lists, run before every force
-         * evaluation, finds a contact that the block does not list: how
-         * few rebuilds the contacts need (a diagnostic, as slow as
-         * check_lists). */
-        missed_contact
-      };
-      ListRebuilds list_rebuilds = ListRebuilds::criterion;
-
-      static void
-      declare_parameters(dealii::ParameterHandler &prm);
-      void
-      parse_parameters(dealii::ParameterHandler &prm);
-    };
-
-    /**
-     * The fibre centres of the yarn described by @p shared and @p parameters
-     * (hexagonal packing or fibre file), after the checks that need no MPI
-     * ranks: the sphere spacing against the fibre diameter, a packing that
-     * fits (or a fibre file that can be read, holds Yarn/Number of fibres
-     * centres and no overlap) and, with @p symmetric_z (quarter symmetry), a
-     * layout that is its own mirror image in z = 0. The impact model, the
-     * elementary tests and validate() share it, so that each check is written
-     * once and `--check` refuses what the run refuses.
-     * @throw InputError naming the parameter or the file
-     */
-    FibreCentres
-    fibre_centres(const YarnImpact::Parameters::Shared &shared,
-                  const Parameters &parameters,
-                  const bool symmetric_z);
-
-    /**
-     * Check the DEM set-up against the shared parameters before anything is
-     * written (called while the parameters are parsed, so also by
-     * `--check`): fibre_centres() for the impact model, with quarter
-     * symmetry when Symmetry = quarter, or, with @p elementary_test, for the
-     * periodic segment of the elementary tests, which ignores Symmetry.
-     * Builds the fibre centres only (milliseconds), not the spheres. The
-     * check that depends on the number of MPI ranks (ghost stations against
-     * slabs) is left to the model.
-     * @throw InputError naming the parameter or the file
-     */
-    void
-    validate(const YarnImpact::Parameters::Shared &shared,
-             const Parameters &parameters,
-             const bool elementary_test = false);
-
-    /**
-     * The fibre-fibre contact law of @p prm between spheres of mass
-     * @p sphere_mass [kg] whose trusses have the stiffness @p truss_k
-     * [N/m]: normal penalty and damping (c = 2 zeta sqrt(m_eff k), m_eff =
-     * m/2), tangential spring and Coulomb friction (doc/dem.md section 2).
-     * The impact model and the elementary tests use this one law.
-     */
-    ContactLaw
-    fibre_contact_law(const Parameters &prm,
-                      const double truss_k,
-                      const double sphere_mass);
-
-    /** The projectile-fibre contact law of @p prm (m_eff = m), as
-     * fibre_contact_law(); the elementary tests' rigid walls use its normal
-     * part. */
-    ContactLaw
-    projectile_contact_law(const Parameters &prm,
-                           const double truss_k,
-                           const double sphere_mass);
-
-    /**
-     * Largest stable step of a sphere of mass @p sphere_mass [kg] with two
-     * trusses of stiffness @p truss_k [N/m], DEM/Coordination fibre
-     * contacts and one projectile (or wall) contact: the Gershgorin bound
-     * of doc/theory.md section 3.2, reduced for the contact damping, before
-     * the safety factor [s].
-     */
-    double
-    critical_time_step(const Parameters &prm,
-                       const double truss_k,
-                       const double sphere_mass);
-
     /** Create the DEM model of the yarn described by @p shared. */
     std::unique_ptr<ImpactModel>
     create_model(const YarnImpact::Parameters::Shared &shared,

@@ -1,0 +1,103 @@
+#ifndef yarn_impact_dem_fibre_chains_h
+#define yarn_impact_dem_fibre_chains_h
+
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/dem/parameters.h>
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace YarnImpact
+{
+  namespace DEM
+  {
+    namespace internal
+    {
+      /**
+       * The fibres of the DEM impact model as chains of spheres joined by
+       * trusses: the modelled part of the yarn (the symmetry planes cut it),
+       * the fibre centres, the cross-sections (stations) along x and the
+       * masses and weights of every sphere. Fixed once built.
+       *
+       * A sphere on a symmetry plane is half in the model: its weight is
+       * 1/2 in the mass, the energies and the contacts with other spheres
+       * on that plane, and its velocity normal to the plane is held at 0
+       * (the masks below).
+       */
+      struct FibreChains
+      {
+        /**
+         * Lay out the yarn of @p shared with the fibre layout of @p prm
+         * (checked as by DEM::validate()).
+         * @throw InputError naming the parameter or the file
+         */
+        FibreChains(const YarnImpact::Parameters::Shared &shared,
+                    const Parameters &prm);
+
+        /** Half (x = 0) or quarter (x = 0 and z = 0) symmetry. */
+        bool x_sym, z_sym;
+        /** Whole yarn over modelled part (1, 2 or 4) [-]. */
+        double factor;
+
+        /** Modelled fibres and fibres of the whole yarn. */
+        unsigned int nf = 0, nf_whole = 0;
+        /** Modelled stations (cross-sections) and those of the whole yarn.
+         */
+        unsigned int n_st = 0, n_whole_stations = 0;
+        /** Station at x = 0. */
+        unsigned int s_impact = 0;
+        /** Stations of the profile folded about x = 0. */
+        unsigned int n_prof = 0;
+        /** Fibre diameter and sphere radius [m]. */
+        double d = 0., radius = 0.;
+        /** Rest length of a truss [m]. */
+        double L0 = 0.;
+        /** Mass of a whole sphere [kg]. */
+        double sphere_mass = 0.;
+        /** Axial stiffness EA/L0 of a truss [N/m]. */
+        double truss_k = 0.;
+        /** Cross-section of a fibre [m^2]. */
+        double fibre_area = 0.;
+        /** Factor by which the packing ellipse was enlarged [-]. */
+        double packing_scale = 1.;
+        /** Mass of the modelled spheres times the symmetry factor [kg]. */
+        double total_mass = 0.;
+
+        /** Per fibre: initial centre y, z [m], weight (1/2 on z = 0) [-],
+         * inverse mass of a whole-station sphere [1/kg], z-velocity mask
+         * (0 on z = 0) [-]. */
+        std::vector<double> fy, fz, fw, finv, zmask;
+        /** Per station: initial x [m], weight (1/2 on x = 0) [-], factor of
+         * the inverse mass (0 when clamped, 2 on x = 0) [-], x-velocity mask
+         * (0 on x = 0) [-]. */
+        std::vector<double> sx0, sw, sinv, xmask;
+      };
+
+
+      /**
+       * Axial strain [-] of the truss from sphere @p i to the same fibre's
+       * sphere @p i + @p nf at the positions @p pos [m], with rest length
+       * @p L0 [m]; its length [m] in @p length if given.
+       */
+      inline double
+      truss_strain(const double *pos,
+                   const std::size_t i,
+                   const unsigned int nf,
+                   const double L0,
+                   double *length = nullptr)
+      {
+        const std::size_t j = i + nf;
+        const double e[3]   = {pos[3 * j] - pos[3 * i],
+                               pos[3 * j + 1] - pos[3 * i + 1],
+                               pos[3 * j + 2] - pos[3 * i + 2]};
+        const double l = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+        if (length)
+          *length = l;
+        return l / L0 - 1.;
+      }
+    } // namespace internal
+  }   // namespace DEM
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,94 @@
+#ifndef yarn_impact_dem_forces_h
+#define yarn_impact_dem_forces_h
+
+#include <yarn_impact/dem/contact_law.h>
+#include <yarn_impact/dem/decomposition.h>
+#include <yarn_impact/dem/fibre_chains.h>
+#include <yarn_impact/dem/neighbour_lists.h>
+#include <yarn_impact/dem/spheres.h>
+
+#include <vector>
+
+namespace YarnImpact
+{
+  class Projectile;
+
+  namespace DEM
+  {
+    namespace internal
+    {
+      /**
+       * The forces of the trusses (s, s+1) with at least one owned end, on
+       * the positions @p x [m], added to @p F [N]. With @p failure, a truss
+       * strained beyond @p failure_strain [-] breaks (its flag in
+       * @p broken) and its elastic energy is added to @p dissipated [J]
+       * (the rank's share).
+       */
+      void
+      truss_forces(const FibreChains &chains,
+                   const Decomposition &decomposition,
+                   const bool failure,
+                   const double failure_strain,
+                   const double *__restrict x,
+                   double *__restrict F,
+                   std::uint8_t *__restrict broken,
+                   double &dissipated);
+
+      /**
+       * The fibre-fibre contact forces of the listed pairs of @p blocks by
+       * @p law over the step @p dt [s] on positions @p x [m] and velocities
+       * @p v [m/s], added to @p F [N]; the pairs' contact flags and
+       * tangential histories are updated, the energy dissipated (the rank's
+       * share) is added to @p dissipated [J].
+       */
+      void
+      fibre_contact_forces(std::vector<ListBlock> &blocks,
+                           const ContactLaw &law,
+                           const double d,
+                           const Decomposition &decomposition,
+                           const double *__restrict x,
+                           const double *__restrict v,
+                           double *__restrict F,
+                           const double dt,
+                           double &dissipated);
+
+      /**
+       * The contact forces of the mirror pairs of @p blocks (a sphere with
+       * the image of another one, or of itself, in a symmetry plane), as
+       * fibre_contact_forces(): i feels the force, j its mirror image
+       * (nothing more for a self-image pair).
+       */
+      void
+      mirror_contact_forces(std::vector<ListBlock> &blocks,
+                            const ContactLaw &law,
+                            const double d,
+                            const Decomposition &decomposition,
+                            const double *__restrict x,
+                            const double *__restrict v,
+                            double *__restrict F,
+                            const double dt,
+                            double &dissipated);
+
+      /**
+       * The contact forces of the rigid cylindrical @p projectile on the
+       * owned spheres of the cross-sections that can reach it, by @p law
+       * over the step @p dt [s], added to the forces of @p spheres [N]; the
+       * energy dissipated is added to @p dissipated [J] and the contact
+       * geometry stored in @p contact.
+       * @return the reaction (y-force on the projectile) of this rank's
+       * modelled part [N]
+       */
+      double
+      projectile_contact_forces(const Projectile &projectile,
+                                const ContactLaw &law,
+                                const FibreChains &chains,
+                                const Decomposition &decomposition,
+                                Spheres &spheres,
+                                const double dt,
+                                ProjectileContactState &contact,
+                                double &dissipated);
+    } // namespace internal
+  }   // namespace DEM
+} // namespace YarnImpact
+
+#endif

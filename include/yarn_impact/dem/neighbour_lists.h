@@ -1,0 +1,253 @@
+#ifndef yarn_impact_dem_neighbour_lists_h
+#define yarn_impact_dem_neighbour_lists_h
+
+#include <yarn_impact/dem/decomposition.h>
+#include <yarn_impact/dem/fibre_chains.h>
+#include <yarn_impact/dem/parameters.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace YarnImpact
+{
+  namespace DEM
+  {
+    namespace internal
+    {
+      /** A listed sphere pair (partner j of the row's sphere); a negative
+       * weight marks an active contact (one with tangential history). The
+       * weight [-] is 1/2 for a pair of spheres both on a symmetry plane. */
+      struct Pair
+      {
+        std::uint32_t j;
+        float w;
+      };
+
+      /** A pair of a sphere with the mirror image of another one, or of
+       * itself: in x = 0 (half and quarter symmetry, axes bit 1), in z = 0
+       * (quarter, bit 2) or in both (quarter, bits 1 | 2). The image of j is
+       * (sx x_j, y_j, sz z_j) with sx = -1 for bit 1 and sz = -1 for bit 2.
+       */
+      struct MirrorPair
+      {
+        std::uint32_t i, j;
+        float w;
+        std::uint8_t axes;
+        bool active;
+      };
+
+      /** The order of the mirror pairs of a block (by i, j, axes). */
+      inline bool
+      mirror_less(const MirrorPair &a, const MirrorPair &b)
+      {
+        return a.i < b.i ||
+               (a.i == b.i && (a.j < b.j || (a.j == b.j && a.axes < b.axes)));
+      }
+
+
+      /** The neighbour list of a block of consecutive cross-sections of a
+       * rank (doc/dem.md section 4): the pairs whose lower sphere index is
+       * in the block's rows, found among the rows and a halo of the
+       * following cross-sections, and the rebuild criterion of these
+       * spheres. A block is rebuilt on its own when its criterion fails, so
+       * that a few fast spheres under the projectile do not rebuild the
+       * lists of the whole slab (on every rank, the others wait for it). */
+      struct ListBlock
+      {
+        /** Storage cross-sections of the block (fixed). */
+        unsigned int s_begin = 0, s_end = 0;
+        /** Active cross-sections of the rows, and the end of the halo
+         * (which grows when other cross-sections come near the rows). */
+        unsigned int row_begin = 0, row_end = 0, halo_end = 0;
+        /** Spheres of the rows [b, e) and of the halo [e, h) at the last
+         * build. */
+        std::size_t b = 0, e = 0, h = 0;
+        /** The cross-sections changed since the last build. */
+        bool stale = true;
+        /** The rows hold the plane x = 0 (mirror pairs in x). */
+        bool holds_plane = false;
+        /** Pairs in CSR by the row of the lower index, with the tangential
+         * history of each pair [m]; mirror pairs likewise. */
+        std::vector<std::uint32_t> pstart, pstart_old;
+        std::vector<Pair> pairs, pairs_old;
+        std::vector<double> pxi, pxi_old;
+        std::vector<MirrorPair> mpairs, mpairs_old;
+        std::vector<double> mxi, mxi_old;
+        /** Build positions [m] and build bins of the spheres [b, h). */
+        std::vector<float> pos_build;
+        std::vector<std::uint32_t> bin_of;
+        /** Bins along x of the build (width d + skin, from the lowest
+         * sphere) and their reference displacements [m]. */
+        unsigned int n_bins = 0;
+        std::vector<std::uint32_t> bin_count;
+        std::vector<double> D_prev, D_sum;
+        /** Largest squared displacement relative to its bin [m^2]. */
+        double r2_max = 0.;
+        /** The criterion's bound of this step [m]. */
+        double bound = 0.;
+
+        /** Whether the block has rows on this rank. */
+        bool
+        active() const
+        {
+          return row_end > row_begin;
+        }
+      };
+
+
+      /**
+       * Add the displacement of sphere @p i (positions @p pos [m]) since the
+       * build of block @p B to the block's rebuild criterion. Inline: the
+       * drift calls it for every owned sphere.
+       */
+      inline void
+      accumulate_criterion(ListBlock &B, const double *pos, const std::size_t i)
+      {
+        const std::size_t k   = i - B.b;
+        const std::uint32_t b = B.bin_of[k];
+        const double dx       = pos[3 * i] - B.pos_build[3 * k];
+        const double dy       = pos[3 * i + 1] - B.pos_build[3 * k + 1];
+        const double dz       = pos[3 * i + 2] - B.pos_build[3 * k + 2];
+        const double rx       = dx - B.D_prev[3 * b];
+        const double ry       = dy - B.D_prev[3 * b + 1];
+        const double rz       = dz - B.D_prev[3 * b + 2];
+        B.r2_max              = std::max(B.r2_max, rx * rx + ry * ry + rz * rz);
+        B.D_sum[3 * b] += dx;
+        B.D_sum[3 * b + 1] += dy;
+        B.D_sum[3 * b + 2] += dz;
+      }
+
+
+      /**
+       * The Verlet neighbour lists of a rank, in blocks of `DEM/List block`
+       * storage cross-sections (doc/dem.md section 4): the blocks, their
+       * rebuild criterion and the build (list_build.cc). The lists refer to
+       * the positions @p pos given at construction.
+       */
+      class NeighbourLists
+      {
+      public:
+        /** Blocks over the storage cross-sections of @p decomposition; the
+         * first build is left to rebuild(). */
+        NeighbourLists(const Parameters &prm,
+                       const YarnImpact::Parameters::Shared &shared,
+                       const FibreChains &chains,
+                       const Decomposition &decomposition,
+                       const std::vector<double> &pos);
+
+        /** The block whose storage holds local sphere @p i. */
+        ListBlock &
+        block_of(const std::size_t i)
+        {
+          return blocks[station_block[i / chains.nf]];
+        }
+        /** The block whose storage holds local sphere @p i. */
+        const ListBlock &
+        block_of(const std::size_t i) const
+        {
+          return blocks[station_block[i / chains.nf]];
+        }
+
+        /** Pairs in the neighbour lists of this rank. */
+        unsigned long
+        n_listed_pairs() const;
+
+        /** Rows and halos of the blocks after a change of the active range;
+         * every block is stale after this. */
+        void
+        set_block_ranges();
+
+        /**
+         * Every cross-section above the rows of a block that comes within
+         * d + L0 of their x-range (global extents @p lo_x, @p hi_x [m])
+         * joins the block's halo, and the block becomes stale; a block whose
+         * halo covers the next block takes it over.
+         */
+        void
+        grow_halos(const std::vector<double> &lo_x,
+                   const std::vector<double> &hi_x);
+
+        /** Add the displacements of the ghosts and the halos to the
+         * criteria (the owned ones were added during the drift). */
+        void
+        accumulate_ghost_criteria();
+
+        /**
+         * Evaluate the criterion of every active block if
+         * @p check_criterion (it moves the reference displacements on;
+         * otherwise the bound is 0).
+         * @return whether a block is stale or fails its criterion
+         */
+        bool
+        evaluate_criteria(const bool check_criterion);
+
+        /**
+         * Rebuild the blocks that are stale or fail their criterion. On
+         * several ranks, when @p check_criterion and any rank must rebuild
+         * (@p must_rebuild on one of them, collective), also those that
+         * used `DEM/Joint rebuild fraction` of the skin.
+         */
+        void
+        rebuild_failing(const bool must_rebuild, const bool check_criterion);
+
+        /** Rebuild the lists of block @p B, carrying the tangential history
+         * of the pairs that stay listed (list_build.cc). */
+        void
+        rebuild(ListBlock &B);
+
+        /** Counters for the benchmark after @p step_count force evaluations
+         * (collective). */
+        std::string
+        statistics(const std::uint64_t step_count) const;
+
+        /** The blocks of the rank (a block taken over by the one before it
+         * is left empty). */
+        std::vector<ListBlock> blocks;
+        /** Block of each storage station. */
+        std::vector<unsigned int> station_block;
+        /** Block rebuilds, and the rows they rebuilt [spheres]. */
+        unsigned long n_rebuilds = 0, rebuilt_rows = 0;
+        /** Spheres searched and candidates tested by the rebuilds. */
+        unsigned long n_searched = 0, n_candidates = 0;
+
+      private:
+        /** The bound on the relative motion of the pairs of block @p B
+         * since its build [m]; the lists hold while it is below the skin.
+         * Moves the block's reference displacements on. */
+        double
+        list_bound(ListBlock &B);
+        /** Append the rows of block @p C (which follow those of @p B) to
+         * @p B. */
+        void
+        absorb(ListBlock &B, ListBlock &C);
+
+        const Parameters &prm;
+        const FibreChains &chains;
+        const Decomposition &decomposition;
+        const std::vector<double> &pos;
+        /** Yarn length [m] (the rounding margin of the criterion). */
+        const double length;
+        /** Search radius d + skin [m]. */
+        const double cutoff;
+        /** Largest bound terms of the last criterion evaluation [m]. */
+        double last_r = 0., last_g = 0.;
+
+        // Scratch of the build (kept to avoid reallocation).
+        std::vector<std::uint32_t> bin_start, bin_sphere, cell_off, cell_start,
+          cell_sphere, near_sphere, near_x;
+        std::vector<double> bin_y0, bin_z0, bin_ic;
+        std::vector<std::uint32_t> bin_ny, bin_nz;
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> found;
+        std::vector<double> cell_x, cell_y, cell_z;
+        std::vector<float> cell_xf, cell_yf, cell_zf;
+        std::vector<std::uint32_t> candidate_k;
+        std::vector<std::uint8_t> cell_partners;
+      };
+    } // namespace internal
+  }   // namespace DEM
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,88 @@
+#ifndef yarn_impact_dem_observables_h
+#define yarn_impact_dem_observables_h
+
+#include <yarn_impact/core/impact_model.h>
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/dem/contact_law.h>
+#include <yarn_impact/dem/decomposition.h>
+#include <yarn_impact/dem/fibre_chains.h>
+#include <yarn_impact/dem/neighbour_lists.h>
+#include <yarn_impact/dem/spheres.h>
+
+#include <string>
+#include <vector>
+
+namespace YarnImpact
+{
+  namespace DEM
+  {
+    namespace internal
+    {
+      /**
+       * The observables of the DEM impact model for the history: energies
+       * (kinetic, trusses, contacts, dissipated), failed trusses, the
+       * largest strain and the profile of the stations folded about x = 0,
+       * from which the wave fronts are measured. Reads the model's parts
+       * given at construction; every call is collective.
+       */
+      class ObservablesMeter
+      {
+      public:
+        /** A meter of the model made of these parts; @p fibre_law and
+         * @p projectile_law are read at every measure(). */
+        ObservablesMeter(const YarnImpact::Parameters::WaveFronts &wave_fronts,
+                         const FibreChains &chains,
+                         const Decomposition &decomposition,
+                         const Spheres &spheres,
+                         const NeighbourLists &lists,
+                         const ContactLaw &fibre_law,
+                         const ContactLaw &projectile_law);
+
+        /** Record the initial width of the folded profile [m] (at set-up,
+         * collective). */
+        void
+        record_initial_width();
+
+        /**
+         * The observables now; the projectile contacts are those of the
+         * last force evaluation, at @p contact, @p dissipated [J] is this
+         * rank's dissipated energy so far. @p cut_through tells whether
+         * every fibre has a failed truss.
+         */
+        Observables
+        measure(const ProjectileContactState &contact,
+                const double dissipated,
+                bool &cut_through) const;
+
+      private:
+        const YarnImpact::Parameters::WaveFronts &wave_fronts;
+        const FibreChains &chains;
+        const Decomposition &decomposition;
+        const Spheres &spheres;
+        const NeighbourLists &lists;
+        const ContactLaw &fibre_law, &projectile_law;
+        /** Initial width of each profile station [m]. */
+        std::vector<double> initial_width;
+        /** Scratch of the reductions. */
+        mutable std::vector<double> profile_buffer;
+      };
+
+
+      /**
+       * Write the VTU piece of this rank's owned cross-sections (plus the
+       * first ghost one on the right, so that the trusses across the rank
+       * boundary are drawn) as `dem_NNNN_rQ.vtu` in @p directory, and on
+       * rank 0 the record `dem_NNNN.pvtu` (collective).
+       * @return the name of the record
+       */
+      std::string
+      write_snapshot(const FibreChains &chains,
+                     const Decomposition &decomposition,
+                     const Spheres &spheres,
+                     const std::string &directory,
+                     const unsigned int index);
+    } // namespace internal
+  }   // namespace DEM
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,54 @@
+#ifndef yarn_impact_dem_spheres_h
+#define yarn_impact_dem_spheres_h
+
+#include <cstdint>
+#include <vector>
+
+namespace YarnImpact
+{
+  namespace DEM
+  {
+    namespace internal
+    {
+      /**
+       * The state of the local spheres of the DEM impact model
+       * (cross-section-major, in the local numbering of Decomposition), for
+       * every step to read and write as plain contiguous arrays.
+       */
+      struct Spheres
+      {
+        /** Position [m], velocity [m/s] and force [N], 3 per sphere. The
+         * velocity lags the force by the pending kick. */
+        std::vector<double> pos, vel, frc;
+        /** Whether the truss to the same fibre's sphere at the next station
+         * has failed. */
+        std::vector<std::uint8_t> broken;
+        /** Tangential history of the projectile contact [m], 3 per sphere,
+         * and the force evaluation at which that contact was last active. */
+        std::vector<double> xi_p;
+        std::vector<std::uint64_t> proj_step;
+        /** Per station of the model (owned ones set): x-range and highest y
+         * of its spheres after the last drift [m]. */
+        std::vector<double> st_xlo, st_xhi, st_ymax;
+        /** Kick [s] not yet applied to the velocities: it is fused with the
+         * next drift (one pass over memory instead of two). */
+        double pending_kick = 0.;
+        /** Whether the drift has applied (and cleared) the owned forces. */
+        bool forces_consumed = true;
+        /** Force evaluations so far. */
+        std::uint64_t step_count = 0;
+      };
+
+
+      /** The elastic energy stored in the projectile contacts at the last
+       * force evaluation needs where the projectile was. */
+      struct ProjectileContactState
+      {
+        /** Projectile axis y [m] and contact distance R + r [m]. */
+        double yc = 0., Rr = 0.;
+      };
+    } // namespace internal
+  }   // namespace DEM
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,161 @@
+// The fibre-fibre contact forces of the DEM impact model: the listed pairs
+// and the mirror pairs (contacts with images in the symmetry planes), both
+// by the one pair kernel of contact_kernels.h.
+#pragma GCC optimize("O3")
+
+#include <yarn_impact/dem/contact_kernels.h>
+#include <yarn_impact/dem/forces.h>
+
+namespace YarnImpact
+{
+  namespace DEM
+  {
+    namespace internal
+    {
+      void
+      fibre_contact_forces(std::vector<ListBlock> &blocks,
+                           const ContactLaw &law,
+                           const double d,
+                           const Decomposition &decomposition,
+                           const double *__restrict x,
+                           const double *__restrict v,
+                           double *__restrict F,
+                           const double dt,
+                           double &dissipated)
+      {
+        double diss_sum = dissipated;
+        const double d2 = d * d;
+        for (ListBlock &B : blocks)
+          {
+            const std::uint32_t *__restrict pstart = B.pstart.data();
+            Pair *__restrict pairs                 = B.pairs.data();
+            double *__restrict pxi                 = B.pxi.data();
+            for (std::size_t i = B.b; i < B.e; ++i)
+              {
+                const std::uint32_t p0 = pstart[i - B.b],
+                                    p1 = pstart[i - B.b + 1];
+                if (p0 == p1)
+                  continue;
+                const double xi = x[3 * i], yi = x[3 * i + 1],
+                             zi = x[3 * i + 2];
+                // The force on i is summed over its row first, then added.
+                double fx = 0., fy = 0., fz = 0.;
+                for (std::uint32_t p = p0; p < p1; ++p)
+                  {
+                    const std::size_t j = pairs[p].j;
+                    double f[3], diss = 0.;
+                    if (!pair_contact_force(law,
+                                            d,
+                                            d2,
+                                            xi,
+                                            yi,
+                                            zi,
+                                            x + 3 * j,
+                                            v + 3 * i,
+                                            v + 3 * j,
+                                            1.,
+                                            1.,
+                                            dt,
+                                            &pxi[3 * p],
+                                            f,
+                                            diss))
+                      {
+                        // Separated: the contact ends with its history.
+                        if (pairs[p].w < 0.f)
+                          {
+                            pairs[p].w     = -pairs[p].w;
+                            pxi[3 * p]     = 0.;
+                            pxi[3 * p + 1] = 0.;
+                            pxi[3 * p + 2] = 0.;
+                          }
+                        continue;
+                      }
+                    if (pairs[p].w > 0.f)
+                      pairs[p].w = -pairs[p].w;
+                    const double w = -pairs[p].w;
+                    fx += w * f[0];
+                    fy += w * f[1];
+                    fz += w * f[2];
+                    F[3 * j] -= w * f[0];
+                    F[3 * j + 1] -= w * f[1];
+                    F[3 * j + 2] -= w * f[2];
+                    diss_sum += w * decomposition.own_factor(i, j) * diss;
+                  }
+                F[3 * i] += fx;
+                F[3 * i + 1] += fy;
+                F[3 * i + 2] += fz;
+              }
+          }
+        dissipated = diss_sum;
+      }
+
+
+      void
+      mirror_contact_forces(std::vector<ListBlock> &blocks,
+                            const ContactLaw &law,
+                            const double d,
+                            const Decomposition &decomposition,
+                            const double *__restrict x,
+                            const double *__restrict v,
+                            double *__restrict F,
+                            const double dt,
+                            double &dissipated)
+      {
+        double diss_sum = dissipated;
+        const double d2 = d * d;
+        for (ListBlock &B : blocks)
+          {
+            std::vector<MirrorPair> &mpairs = B.mpairs;
+            std::vector<double> &mxi        = B.mxi;
+            for (std::size_t p = 0; p < mpairs.size(); ++p)
+              {
+                MirrorPair &mp      = mpairs[p];
+                const std::size_t i = mp.i, j = mp.j;
+                const double sx = (mp.axes & 1) ? -1. : 1.,
+                             sz = (mp.axes & 2) ? -1. : 1.;
+                double f[3], diss = 0.;
+                if (!pair_contact_force(law,
+                                        d,
+                                        d2,
+                                        x[3 * i],
+                                        x[3 * i + 1],
+                                        x[3 * i + 2],
+                                        x + 3 * j,
+                                        v + 3 * i,
+                                        v + 3 * j,
+                                        sx,
+                                        sz,
+                                        dt,
+                                        &mxi[3 * p],
+                                        f,
+                                        diss))
+                  {
+                    if (mp.active)
+                      {
+                        mp.active  = false;
+                        mxi[3 * p] = mxi[3 * p + 1] = mxi[3 * p + 2] = 0.;
+                      }
+                    continue;
+                  }
+                mp.active      = true;
+                const double w = mp.w;
+                F[3 * i] += w * f[0];
+                F[3 * i + 1] += w * f[1];
+                F[3 * i + 2] += w * f[2];
+                // j feels the mirror image of the reaction; a self-image
+                // pair counts half in the dissipation (it is one contact).
+                if (j != i)
+                  {
+                    F[3 * j] -= w * sx * f[0];
+                    F[3 * j + 1] -= w * f[1];
+                    F[3 * j + 2] -= w * sz * f[2];
+                  }
+                diss_sum += w * (i == j ? 0.5 : 1.) *
+                            decomposition.own_factor(i, j) * diss;
+              }
+          }
+        dissipated = diss_sum;
+      }
+    } // namespace internal
+  }   // namespace DEM
+} // namespace YarnImpact

@@ -1,0 +1,81 @@
+// The fibres of the DEM impact model as chains of spheres: layout, stations
+// and masses.
+#pragma GCC optimize("O3")
+
+#include <yarn_impact/dem/fibre_chains.h>
+
+#include <deal.II/base/numbers.h>
+
+#include <cmath>
+
+namespace YarnImpact
+{
+  namespace DEM
+  {
+    namespace internal
+    {
+      FibreChains::FibreChains(const YarnImpact::Parameters::Shared &shared,
+                               const Parameters &prm)
+        : x_sym(shared.general.symmetry !=
+                YarnImpact::Parameters::Symmetry::none)
+        , z_sym(shared.general.symmetry ==
+                YarnImpact::Parameters::Symmetry::quarter)
+        , factor(
+            YarnImpact::Parameters::symmetry_factor(shared.general.symmetry))
+      {
+        const auto &y = shared.yarn;
+        d             = y.fibre_diameter;
+        radius        = 0.5 * d;
+        // Fibre centres, checked as by validate() (also run at parsing).
+        const FibreCentres centres = fibre_centres(shared, prm, z_sym);
+        packing_scale              = centres.scale;
+        nf_whole                   = centres.size();
+        for (unsigned int a = 0; a < nf_whole; ++a)
+          if (!z_sym || centres.z[a] >= 0.)
+            {
+              const bool on_plane = z_sym && centres.z[a] == 0.;
+              // Touching neighbours get a gap of 1e-9 d, so that they do not
+              // start as contacts with round-off overlaps.
+              fy.push_back(centres.y[a] * (1. + 1e-9));
+              fz.push_back(centres.z[a] * (1. + 1e-9));
+              fw.push_back(on_plane ? 0.5 : 1.);
+              zmask.push_back(on_plane ? 0. : 1.);
+            }
+        nf = fy.size();
+
+        // Stations: an even number of equal trusses over the length, so
+        // that a cross-section lies on the plane x = 0.
+        const unsigned int n_seg =
+          2 * static_cast<unsigned int>(
+                std::ceil(y.length / (2. * prm.sphere_spacing) - 1e-9));
+        L0               = y.length / n_seg;
+        n_whole_stations = n_seg + 1;
+        n_prof           = n_seg / 2 + 1;
+        n_st             = x_sym ? n_seg / 2 + 1 : n_seg + 1;
+        s_impact         = x_sym ? 0 : n_seg / 2;
+        for (unsigned int s = 0; s < n_st; ++s)
+          {
+            const double x     = x_sym ? s * L0 : -0.5 * y.length + s * L0;
+            const bool plane   = x_sym && s == 0;
+            const bool clamped = (s == n_st - 1) || (!x_sym && s == 0);
+            sx0.push_back(x);
+            sw.push_back(plane ? 0.5 : 1.);
+            sinv.push_back(clamped ? 0. : (plane ? 2. : 1.));
+            xmask.push_back(plane ? 0. : 1.);
+          }
+
+        fibre_area  = dealii::numbers::PI * d * d / 4.;
+        sphere_mass = y.fibre_density * fibre_area * L0;
+        truss_k     = y.fibre_modulus * fibre_area / L0;
+        for (unsigned int f = 0; f < nf; ++f)
+          finv.push_back(1. / (sphere_mass * fw[f]));
+
+        total_mass = 0.;
+        for (unsigned int f = 0; f < nf; ++f)
+          for (unsigned int s = 0; s < n_st; ++s)
+            total_mass += sphere_mass * fw[f] * sw[s];
+        total_mass *= factor;
+      }
+    } // namespace internal
+  }   // namespace DEM
+} // namespace YarnImpact

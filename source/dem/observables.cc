@@ -1,0 +1,258 @@
+// The observables of the DEM impact model for the history: energies,
+// failed trusses, strains and the station profile of the wave fronts.
+#pragma GCC optimize("O3")
+
+#include <yarn_impact/dem/contact_kernels.h>
+#include <yarn_impact/dem/integration.h>
+#include <yarn_impact/dem/observables.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace YarnImpact
+{
+  namespace DEM
+  {
+    namespace internal
+    {
+      namespace
+      {
+        constexpr double infinity = std::numeric_limits<double>::infinity();
+      }
+
+
+      ObservablesMeter::ObservablesMeter(
+        const YarnImpact::Parameters::WaveFronts &wave_fronts,
+        const FibreChains &chains,
+        const Decomposition &decomposition,
+        const Spheres &spheres,
+        const NeighbourLists &lists,
+        const ContactLaw &fibre_law,
+        const ContactLaw &projectile_law)
+        : wave_fronts(wave_fronts)
+        , chains(chains)
+        , decomposition(decomposition)
+        , spheres(spheres)
+        , lists(lists)
+        , fibre_law(fibre_law)
+        , projectile_law(projectile_law)
+      {}
+
+
+      void
+      ObservablesMeter::record_initial_width()
+      {
+        const unsigned int nf = chains.nf, s_impact = chains.s_impact;
+        const std::vector<double> &fz = chains.fz;
+        initial_width.assign(chains.n_prof, 0.);
+        for (unsigned int s = decomposition.st_begin; s < decomposition.st_end;
+             ++s)
+          {
+            double zmin = infinity, zmax = -infinity;
+            for (unsigned int f = 0; f < nf; ++f)
+              {
+                zmin = std::min(zmin, fz[f]);
+                zmax = std::max(zmax, fz[f]);
+              }
+            const unsigned int k = (s > s_impact ? s - s_impact : s_impact - s);
+            initial_width[k]     = std::max(initial_width[k],
+                                        chains.z_sym ? 2. * zmax : zmax - zmin);
+          }
+        dealii::Utilities::MPI::max(initial_width,
+                                    decomposition.comm,
+                                    initial_width);
+      }
+
+
+      Observables
+      ObservablesMeter::measure(const ProjectileContactState &contact_at,
+                                const double dissipated,
+                                bool &cut_through) const
+      {
+        const unsigned int nf = chains.nf, n_st = chains.n_st,
+                           n_prof = chains.n_prof, s_impact = chains.s_impact;
+        const unsigned int st_begin = decomposition.st_begin,
+                           st_end   = decomposition.st_end;
+        const unsigned int n_ranks  = decomposition.n_ranks;
+        const MPI_Comm comm         = decomposition.comm;
+        const double d = chains.d, L0 = chains.L0, truss_k = chains.truss_k,
+                     sphere_mass = chains.sphere_mass, factor = chains.factor;
+        const bool z_sym                            = chains.z_sym;
+        const std::vector<double> &fw               = chains.fw;
+        const std::vector<double> &sw               = chains.sw;
+        const std::vector<double> &fy               = chains.fy;
+        const std::vector<double> &pos              = spheres.pos;
+        const double *x                             = pos.data();
+        const std::vector<std::uint8_t> &broken     = spheres.broken;
+        const std::vector<double> &xi_p             = spheres.xi_p;
+        const std::vector<std::uint64_t> &proj_step = spheres.proj_step;
+        const std::uint64_t step_count              = spheres.step_count;
+
+        Observables o;
+        // Sums: kinetic, elastic, contact, dissipated, failed.
+        double kinetic = 0., elastic = 0., contact = 0., failed = 0.;
+        // Maxima: max strain, then the profile (strain, deflection, width,
+        // position) of n_prof stations.
+        auto &buf = profile_buffer;
+        buf.assign(1 + 4 * n_prof + nf, -infinity);
+        double *fibre_cut = buf.data() + 1 + 4 * n_prof;
+        double *pstrain = buf.data() + 1, *pdefl = pstrain + n_prof,
+               *pwidth = pdefl + n_prof, *ppos = pwidth + n_prof;
+
+        // Second moment of the fibre centres about z = 0 and their weight,
+        // per profile station (summed over the ranks).
+        std::vector<double> pz2(2 * n_prof, 0.);
+        for (unsigned int s = st_begin; s < st_end; ++s)
+          {
+            const unsigned int k = (s > s_impact ? s - s_impact : s_impact - s);
+            double smax = -infinity, defl = -infinity, zmin = infinity,
+                   zmax = -infinity, xsum = 0.;
+            for (unsigned int f = 0; f < nf; ++f)
+              {
+                const std::size_t i = decomposition.local_index(s, f);
+                const double m      = sphere_mass * fw[f] * sw[s];
+                double v2           = 0.;
+                for (unsigned int c = 0; c < 3; ++c)
+                  {
+                    const double vc =
+                      kicked_velocity(chains, decomposition, spheres, i, c);
+                    v2 += vc * vc;
+                  }
+                kinetic += 0.5 * m * v2;
+                defl = std::max(defl, fy[f] - pos[3 * i + 1]);
+                pz2[k] += fw[f] * pos[3 * i + 2] * pos[3 * i + 2];
+                pz2[n_prof + k] += fw[f];
+                zmin = std::min(zmin, pos[3 * i + 2]);
+                zmax = std::max(zmax, pos[3 * i + 2]);
+                xsum += std::abs(pos[3 * i]);
+                // Truss to the next station (the last station uses the one
+                // before it for the profile).
+                if (s + 1 < n_st)
+                  {
+                    if (broken[i])
+                      {
+                        failed += factor * fw[f];
+                        fibre_cut[f] = 1.;
+                      }
+                    else
+                      {
+                        double l;
+                        const double e = truss_strain(x, i, nf, L0, &l);
+                        elastic += 0.5 * truss_k * fw[f] * (l - L0) * (l - L0);
+                        smax = std::max(smax, e);
+                      }
+                  }
+                else if (!broken[i - nf])
+                  smax = std::max(smax, truss_strain(x, i - nf, nf, L0));
+              }
+            pstrain[k] = std::max(pstrain[k], smax);
+            pdefl[k]   = std::max(pdefl[k], defl);
+            pwidth[k]  = std::max(pwidth[k], z_sym ? 2. * zmax : zmax - zmin);
+            ppos[k]    = std::max(ppos[k], xsum / nf);
+            buf[0]     = std::max(buf[0], smax);
+          }
+        // Truss (st_begin - 1, st_begin) belongs to the rank on the left.
+
+        // Contacts: the energy twins of the forces (contact_kernels.h),
+        // weighted as the forces and the dissipation.
+        for (const ListBlock &B : lists.blocks)
+          {
+            const std::uint32_t *pstart           = B.pstart.data();
+            const std::vector<Pair> &pairs        = B.pairs;
+            const std::vector<double> &pxi        = B.pxi;
+            const std::vector<MirrorPair> &mpairs = B.mpairs;
+            const std::vector<double> &mxi        = B.mxi;
+            for (std::size_t i = B.b; i < B.e; ++i)
+              for (std::uint32_t p = pstart[i - B.b]; p < pstart[i - B.b + 1];
+                   ++p)
+                if (pairs[p].w < 0.f)
+                  {
+                    const std::size_t j = pairs[p].j;
+                    contact += -pairs[p].w * decomposition.own_factor(i, j) *
+                               pair_contact_energy(fibre_law,
+                                                   d,
+                                                   x + 3 * i,
+                                                   x + 3 * j,
+                                                   1.,
+                                                   1.,
+                                                   &pxi[3 * p]);
+                  }
+            for (std::size_t p = 0; p < mpairs.size(); ++p)
+              if (mpairs[p].active)
+                {
+                  const std::size_t i = mpairs[p].i, j = mpairs[p].j;
+                  const double sx = (mpairs[p].axes & 1) ? -1. : 1.,
+                               sz = (mpairs[p].axes & 2) ? -1. : 1.;
+                  contact += mpairs[p].w * (i == j ? 0.5 : 1.) *
+                             decomposition.own_factor(i, j) *
+                             pair_contact_energy(fibre_law,
+                                                 d,
+                                                 x + 3 * i,
+                                                 x + 3 * j,
+                                                 sx,
+                                                 sz,
+                                                 &mxi[3 * p]);
+                }
+          }
+        // Projectile contacts of the last force evaluation (the positions
+        // have not moved since).
+        for (std::size_t i = decomposition.own_b; i < decomposition.own_e; ++i)
+          if (proj_step[i] == step_count && step_count > 0)
+            {
+              const unsigned int s = decomposition.station_of(i), f = i % nf;
+              const double ex = pos[3 * i], ey = pos[3 * i + 1] - contact_at.yc;
+              const double delta =
+                std::max(0., contact_at.Rr - std::sqrt(ex * ex + ey * ey));
+              contact +=
+                fw[f] * sw[s] * projectile_law.energy(delta, &xi_p[3 * i]);
+            }
+
+        double sums[5] = {kinetic, elastic, contact, dissipated, failed};
+        if (n_ranks > 1)
+          {
+            MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, comm);
+            MPI_Allreduce(MPI_IN_PLACE,
+                          buf.data(),
+                          buf.size(),
+                          MPI_DOUBLE,
+                          MPI_MAX,
+                          comm);
+            MPI_Allreduce(MPI_IN_PLACE,
+                          pz2.data(),
+                          pz2.size(),
+                          MPI_DOUBLE,
+                          MPI_SUM,
+                          comm);
+          }
+        o.kinetic_energy    = factor * sums[0];
+        o.elastic_energy    = factor * sums[1];
+        o.contact_energy    = factor * sums[2];
+        o.dissipated_energy = factor * sums[3];
+        o.n_failed          = static_cast<unsigned long>(sums[4] + 0.5);
+        o.max_strain        = std::max(0., buf[0]);
+
+        Analysis::StationProfile profile;
+        profile.resize(n_prof);
+        for (unsigned int k = 0; k < n_prof; ++k)
+          {
+            profile.position[k]      = ppos[k];
+            profile.axial_strain[k]  = pstrain[k];
+            profile.deflection[k]    = pdefl[k];
+            profile.width[k]         = pwidth[k];
+            profile.initial_width[k] = initial_width[k];
+            profile.rms_width[k] =
+              4. * std::sqrt(pz2[k] / std::max(pz2[n_prof + k], 1e-300));
+          }
+        o.fronts     = Analysis::measure_wave_fronts(profile, wave_fronts);
+        bool all_cut = nf > 0;
+        for (unsigned int f = 0; f < nf; ++f)
+          all_cut = all_cut && fibre_cut[f] > 0.;
+        cut_through = all_cut;
+        return o;
+      }
+    } // namespace internal
+  }   // namespace DEM
+} // namespace YarnImpact
