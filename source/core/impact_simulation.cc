@@ -460,14 +460,17 @@ namespace YarnImpact
             }
         if (t1_front < t1)
           summary.front_at_clamp_time = t1_front;
+        // Too short a run to the clamp (a tenth of the window) gives no
+        // speed worth reporting.
         summary.longitudinal_speed =
-          (t1_front > t0 ? fitted_rate(rows,
-                                       t0,
-                                       t1_front,
-                                       [](const HistoryRow &r) {
-                                         return r.model.fronts.longitudinal;
-                                       }) :
-                           0.);
+          (t1_front - t0 > 0.1 * (t1 - t0)
+             ? fitted_rate(rows,
+                           t0,
+                           t1_front,
+                           [](const HistoryRow &r) {
+                             return r.model.fronts.longitudinal;
+                           })
+             : 0.);
         summary.transverse_speed =
           fitted_rate(rows, t0, t1, [](const HistoryRow &r) {
             return r.model.fronts.transverse;
@@ -601,8 +604,13 @@ namespace YarnImpact
     out << "  window: mean deceleration   " << s.mean_deceleration * 1e-5
         << " 1e5 m/s^2\n"
         << "  window: plateau strain      " << s.plateau_strain * 1e2 << " %\n"
-        << "  window: longitudinal speed  " << s.longitudinal_speed << " m/s";
-    if (s.front_at_clamp_time > 0.)
+        << "  window: longitudinal speed  ";
+    if (s.front_at_clamp_time > 0. && s.longitudinal_speed == 0.)
+      out << "not measured (the front reached the clamp at "
+          << s.front_at_clamp_time * 1e6 << " us)";
+    else
+      out << s.longitudinal_speed << " m/s";
+    if (s.front_at_clamp_time > 0. && s.longitudinal_speed != 0.)
       out << " (fitted up to " << s.front_at_clamp_time * 1e6
           << " us, when the front reached the clamp)";
     out << "\n  window: transverse speed    " << s.transverse_speed << " m/s\n";

@@ -3,7 +3,7 @@
 # Faults while writing output must not lose data. A full disk is simulated
 # by the fault injection YARN_IMPACT_DISK_FULL_AFTER=N (every output write
 # after N bytes fails with ENOSPC; doc/user-guide.md), and, where this
-# machine lets us mount one, by a real 256 kB tmpfs. Each case must end with
+# machine lets us mount one, by a real 100 kB tmpfs. Each case must end with
 # exit code 5 and one line naming the file and "no space left on device";
 # the history must end with its last whole row; no summary.txt, snapshot or
 # PVD may be left half-written (no *.tmp either).
@@ -123,13 +123,13 @@ fe_prm p 0.3e-6 0 > p.prm
 run 100 "$exe" p.prm
 check "FE, disk full in parameters.prm" p "parameters.prm"
 
-# 6. A real full disk: a 256 kB tmpfs, where this machine allows mounting.
+# 6. A real full disk: a 100 kB tmpfs, where this machine allows mounting.
 mkdir tmpfs
-if mount -t tmpfs -o size=256k tmpfs tmpfs 2> /dev/null; then
-  fe_prm tmpfs/out 0.3e-6 0.05e-6 > t.prm
+if mount -t tmpfs -o size=100k tmpfs tmpfs 2> /dev/null; then
+  fe_prm tmpfs/out 0.3e-6 0.02e-6 > t.prm
   "$exe" t.prm > stdout 2> stderr
   rc=$?
-  check "FE on a full 256 kB tmpfs" tmpfs/out "vtu"
+  check "FE on a full 100 kB tmpfs" tmpfs/out "vtu"
   umount tmpfs
 else
   echo "note   a tmpfs cannot be mounted here: the real full disk is not tried"
