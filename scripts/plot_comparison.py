@@ -1,11 +1,14 @@
 #!/usr/bin/python3
-"""Plots of a `Model = both` run, from its comparison.csv.
+"""Plots of a `Model = both` run.
 
 Usage: plot_comparison.py DIRECTORY
 
 Writes DIRECTORY/velocity_comparison.png (the paper's Fig. 6: projectile
 velocity of both models) and DIRECTORY/wave_fronts.png (longitudinal,
 transverse and spreading front positions of both models against time).
+Reads DIRECTORY/comparison.csv (both models on one time grid, written by a
+`Model = both` run that reached its end); without it, each model's own
+history (history_fe.csv, history_dem.csv), each over the time it ran.
 """
 import csv
 import os
@@ -16,41 +19,114 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+STYLE = {
+    "figure.facecolor": "white",
+    "axes.facecolor": "white",
+    "savefig.facecolor": "white",
+    "axes.edgecolor": "black",
+    "axes.labelcolor": "black",
+    "text.color": "black",
+    "xtick.color": "black",
+    "ytick.color": "black",
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "font.size": 11,
+    "legend.frameon": True,
+    "legend.framealpha": 0.9,
+}
+MODELS = (("FE", "FE (hyperelastic continuum)", "C0"),
+          ("DEM", "DEM (fibres)", "C3"))
+FRONTS = (("longitudinal", ":"), ("transverse", "-"), ("spreading", "--"))
+
+
+def read(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
 
 def column(rows, name):
     return [float(r[name]) for r in rows]
+
+
+def series(directory):
+    """{model: {"t": [...], "v": [...], front: [...]}} from comparison.csv,
+    or from the two histories; and a note on the source."""
+    comparison = os.path.join(directory, "comparison.csv")
+    data = {}
+    if os.path.exists(comparison):
+        rows = read(comparison)
+        for model, _, _ in MODELS:
+            d = {"t": column(rows, "t [us]"),
+                 "v": column(rows, f"v {model} [m/s]")}
+            for front, _ in FRONTS:
+                d[front] = column(rows, f"{front} front {model} [mm]")
+            data[model] = d
+        return data, "comparison.csv"
+    for model, _, _ in MODELS:
+        path = os.path.join(directory, f"history_{model.lower()}.csv")
+        if not os.path.exists(path):
+            continue
+        rows = read(path)
+        d = {"t": column(rows, "t [us]"),
+             "v": column(rows, "projectile velocity [m/s]")}
+        for front, _ in FRONTS:
+            d[front] = column(rows, f"{front} front [mm]")
+        data[model] = d
+    if not data:
+        sys.exit(f"{directory}: no comparison.csv nor history_*.csv")
+    return data, "history_fe.csv, history_dem.csv"
+
+
+def end_note(ax, data):
+    """Mark where a model's history stops before the other's."""
+    t_end = max(d["t"][-1] for d in data.values())
+    for model, _, colour in MODELS:
+        if model in data and data[model]["t"][-1] < 0.98 * t_end:
+            t = data[model]["t"][-1]
+            ax.axvline(t, color=colour, lw=0.8, ls="-.")
+            ax.annotate(f"{model} history ends at {t:.3g} \u00b5s",
+                        xy=(t, 0.03), xycoords=("data", "axes fraction"),
+                        xytext=(4, 0), textcoords="offset points",
+                        color=colour, fontsize=9)
 
 
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
     directory = sys.argv[1]
-    with open(os.path.join(directory, "comparison.csv")) as f:
-        rows = list(csv.DictReader(f))
-    t = column(rows, "t [us]")
+    data, source = series(directory)
+    plt.rcParams.update(STYLE)
+    run = os.path.basename(os.path.normpath(directory))
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    ax.plot(t, column(rows, "v FE [m/s]"), label="FE (hyperelastic continuum)")
-    ax.plot(t, column(rows, "v DEM [m/s]"), label="DEM (fibres)")
-    ax.set_xlabel("t [us]")
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for model, label, colour in MODELS:
+        if model in data:
+            ax.plot(data[model]["t"], data[model]["v"], color=colour,
+                    label=label)
+    end_note(ax, data)
+    ax.set_xlabel("time t [\u00b5s]")
     ax.set_ylabel("projectile velocity [m/s]")
-    ax.grid(True, alpha=0.3)
-    ax.legend()
+    ax.set_xlim(left=0)
+    ax.set_title(f"Projectile velocity ({run}: {source})", fontsize=10)
+    ax.legend(loc="upper right")
     fig.tight_layout()
-    fig.savefig(os.path.join(directory, "velocity_comparison.png"), dpi=120)
+    fig.savefig(os.path.join(directory, "velocity_comparison.png"), dpi=150)
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    for front, style in (("longitudinal", ":"), ("transverse", "-"),
-                         ("spreading", "--")):
-        for model, colour in (("FE", "C0"), ("DEM", "C1")):
-            ax.plot(t, column(rows, f"{front} front {model} [mm]"), style,
-                    color=colour, label=f"{front}, {model}")
-    ax.set_xlabel("t [us]")
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for front, style in FRONTS:
+        for model, _, colour in MODELS:
+            if model in data:
+                ax.plot(data[model]["t"], data[model][front], style,
+                        color=colour, label=f"{front} front, {model}")
+    end_note(ax, data)
+    ax.set_xlabel("time t [\u00b5s]")
     ax.set_ylabel("front position from the impact point [mm]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.set_title(f"Wave fronts ({run}: {source})", fontsize=10)
+    ax.legend(fontsize=8, loc="center right")
     fig.tight_layout()
-    fig.savefig(os.path.join(directory, "wave_fronts.png"), dpi=120)
+    fig.savefig(os.path.join(directory, "wave_fronts.png"), dpi=150)
 
 
 if __name__ == "__main__":
