@@ -1,5 +1,6 @@
 #include <yarn_impact/analysis/smith_theory.h>
 #include <yarn_impact/core/impact_simulation.h>
+#include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/core/projectile.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -260,6 +261,17 @@ namespace YarnImpact
                                                 p.projectile.initial_velocity,
                                                 p.projectile.mass);
     double dt        = p.time.safety_factor * model->stable_time_step();
+    if (!(dt > 0.) || p.time.end_time / dt > double(p.time.max_steps))
+      {
+        std::ostringstream s;
+        s << "the " << name << " model's stable time step " << dt
+          << " s would need " << p.time.end_time / dt
+          << " steps to reach Time/End time = " << p.time.end_time
+          << " s, more than Time/Maximum number of steps = " << p.time.max_steps
+          << " (a modulus, density or penalty with wrong units, or an impact "
+             "velocity no explicit model can follow?)";
+        throw InputError(s.str());
+      }
     if (!testing)
       out << std::setprecision(5) << "[" << name << "] yarn mass "
           << model->mass() * 1e6 << " mg, mass per length "
@@ -342,6 +354,13 @@ namespace YarnImpact
         }
         t += h;
         ++step;
+        if (step > p.time.max_steps)
+          {
+            std::ostringstream s;
+            s << "Time/Maximum number of steps = " << p.time.max_steps
+              << " reached (the stable time step fell to " << h << " s)";
+            fail(s.str());
+          }
         if (!std::isfinite(force) || !std::isfinite(projectile.velocity()))
           fail("the contact force is not a number");
 

@@ -218,6 +218,14 @@ namespace YarnImpact
         "section failed); otherwise it goes on to End time with the "
         "projectile flying through, and the cut time is reported.");
       prm.declare_entry(
+        "Maximum number of steps",
+        "10000000",
+        Patterns::Integer(1),
+        "A run whose stable time step would need more steps than this to "
+        "reach End time is refused at set-up, and a run stops with an error "
+        "if it gets there: a modulus, density or penalty with wrong units, "
+        "or an impact velocity no explicit model can follow [-].");
+      prm.declare_entry(
         "Time after cut through",
         "0",
         Patterns::Double(0.),
@@ -243,6 +251,7 @@ namespace YarnImpact
         get_positive_double(prm, "Time", "Energy error limit");
       stop_at_cut_through    = prm.get_bool("Stop when cut through");
       time_after_cut_through = prm.get_double("Time after cut through");
+      max_steps              = prm.get_integer("Maximum number of steps");
       prm.leave_subsection();
     }
 

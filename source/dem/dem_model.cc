@@ -60,6 +60,13 @@ namespace YarnImpact
         double
         stable_time_step() const override
         {
+          // The contact bound holds while a sphere meets the projectile over
+          // many steps: a fast projectile must not close more than a tenth
+          // of a sphere radius in one step, or it would jump over spheres
+          // (it binds above about 900 m/s here; doc/dem.md).
+          if (projectile_speed > 0.)
+            return std::min(critical_step,
+                            0.1 * chains.radius / projectile_speed);
           return critical_step;
         }
 
@@ -164,6 +171,8 @@ namespace YarnImpact
         const ContactLaw fibre_law, projectile_law;
         ObservablesMeter meter;
         const double critical_step;
+        /** Projectile speed at the last set-up or force evaluation [m/s]. */
+        double projectile_speed = 0.;
         const bool failure;
         const double failure_strain;
 
@@ -221,6 +230,7 @@ namespace YarnImpact
       void
       Model::setup(const Projectile &projectile, std::ostream &out)
       {
+        projectile_speed          = std::abs(projectile.velocity());
         const std::size_t n_local = decomposition.n_local;
         const unsigned int n_st   = chains.n_st;
         spheres.pos.assign(3 * n_local, 0.);
@@ -311,6 +321,7 @@ namespace YarnImpact
       double
       Model::compute_forces(const Projectile &projectile, const double dt)
       {
+        projectile_speed = std::abs(projectile.velocity());
         ++spheres.step_count;
         decomposition.exchange_ghosts(spheres.pos);
         decomposition.exchange_ghosts(spheres.vel);

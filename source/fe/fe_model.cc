@@ -45,9 +45,10 @@ namespace YarnImpact
 
     template <class Law>
     void
-    YarnModel<Law>::setup(const Projectile &, std::ostream &out)
+    YarnModel<Law>::setup(const Projectile &projectile, std::ostream &out)
     {
       const auto &yarn = shared.yarn;
+      projectile_speed = std::abs(projectile.velocity());
       create_yarn_mesh(tria,
                        yarn,
                        shared.general.symmetry,
@@ -264,6 +265,7 @@ namespace YarnImpact
       // under the projectile and its cells thin.
       const double c_axial2 = law.axial_modulus() / law.density;
       double rate2          = 0.;
+      double min_h2         = std::numeric_limits<double>::max();
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         {
           if (cells.failed[c])
@@ -282,13 +284,28 @@ namespace YarnImpact
                   d[i] += ((a >> k) & 1 ? 0.25 : -0.25) * p[a][i];
               const double h2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
               r2 += (k == cell_axis[c] ? c_axial2 : c_trans2) / h2;
+              min_h2 = std::min(min_h2, h2);
             }
           rate2 = std::max(rate2, r2);
         }
       rate2                = Utilities::MPI::max(rate2, communicator);
       const double dt_bulk = 1. / std::sqrt(rate2);
-      return 1. / std::sqrt(1. / (dt_bulk * dt_bulk) +
-                            1. / (contact_time_step * contact_time_step));
+      const double dt_waves =
+        1. / std::sqrt(1. / (dt_bulk * dt_bulk) +
+                       1. / (contact_time_step * contact_time_step));
+      // The wave bound above holds for small strain increments. A fast
+      // impact crushes the cells under the projectile faster than any wave
+      // runs: no node may close more than a tenth of the smallest cell
+      // size in one step, so that a cell reaches the erosion threshold
+      // (J < 0.2) before it can invert. It binds above a few hundred m/s
+      // (doc/fe-model.md).
+      min_h2 = Utilities::MPI::min(min_h2, communicator);
+      const double closing_speed =
+        std::max(projectile_speed, velocity.linfty_norm());
+      if (closing_speed > 0. && min_h2 < std::numeric_limits<double>::max())
+        return std::min(dt_waves,
+                        closing_fraction * std::sqrt(min_h2) / closing_speed);
+      return dt_waves;
     }
 
 
@@ -307,6 +324,7 @@ namespace YarnImpact
                                        failure_log_stretch,
                                        dissipated);
       force.compress(VectorOperation::add);
+      projectile_speed      = std::abs(projectile.velocity());
       const double reaction = contact.add_forces(projectile,
                                                  reference_coordinate,
                                                  displacement,

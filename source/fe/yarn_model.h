@@ -171,6 +171,11 @@ namespace YarnImpact
       double total_mass        = 0.;
       double top               = 0.;
       double contact_time_step = 0.;
+      /** Speed of the projectile at the last compute_forces() [m/s]. */
+      double projectile_speed = 0.;
+      /** Largest fraction of the smallest cell size a node may close in one
+       * step [-] (stable_time_step()). */
+      static constexpr double closing_fraction = 0.25;
 
       // Energies of the owned part, from the last compute_forces() [J].
       double elastic_energy = 0.;

@@ -132,6 +132,8 @@ namespace YarnImpact
       /** With stop_at_cut_through, how long the run goes on after the cut
        * [s]. */
       double time_after_cut_through = 0.;
+      /** Largest number of time steps a run may take [-]. */
+      unsigned long max_steps = 10000000;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
