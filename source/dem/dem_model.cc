@@ -63,7 +63,7 @@ namespace YarnImpact
           // The contact bound holds while a sphere meets the projectile over
           // many steps: a fast projectile must not close more than a tenth
           // of a sphere radius in one step, or it would jump over spheres
-          // (it binds above about 900 m/s here; doc/dem.md).
+          // (it binds above about 700 m/s here; doc/dem.md).
           if (projectile_speed > 0.)
             return std::min(critical_step,
                             0.1 * chains.radius / projectile_speed);

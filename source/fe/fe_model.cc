@@ -295,7 +295,7 @@ namespace YarnImpact
                        1. / (contact_time_step * contact_time_step));
       // The wave bound above holds for small strain increments. A fast
       // impact crushes the cells under the projectile faster than any wave
-      // runs: no node may close more than a tenth of the smallest cell
+      // runs: no node may close more than a quarter of the smallest cell
       // size in one step, so that a cell reaches the erosion threshold
       // (J < 0.2) before it can invert. It binds above a few hundred m/s
       // (doc/fe-model.md).
