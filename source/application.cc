@@ -204,6 +204,33 @@ namespace YarnImpact
         throw InputError(error);
     }
 
+    /**
+     * The memory guard: refuse a set-up that would not fit in this
+     * machine's memory, naming the parameter that makes it large, before
+     * anything is allocated; the estimates are printed at set-up.
+     */
+    void
+    check_memory_of_models(const AllParameters &p,
+                           const bool print,
+                           std::ostream &out)
+    {
+      if (p.elementary.loading != DEM::ElementaryLoading::none)
+        return;
+      const auto model = p.shared.general.model;
+      std::vector<std::string> lines;
+      if (model != Parameters::ModelType::dem)
+        lines.push_back(check_memory(FE::memory_estimate(p.shared, p.fe),
+                                     "fe",
+                                     MPI_COMM_WORLD));
+      if (model != Parameters::ModelType::fe)
+        lines.push_back(check_memory(DEM::memory_estimate(p.shared, p.dem),
+                                     "dem",
+                                     MPI_COMM_WORLD));
+      if (print && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        for (const auto &line : lines)
+          out << line << '\n';
+    }
+
     std::unique_ptr<ImpactModel>
     create_model(const Parameters::ModelType type, const AllParameters &p)
     {
@@ -333,6 +360,11 @@ namespace YarnImpact
     try
       {
         AllParameters parameters = read_parameters(file, prm);
+        check_memory_of_models(parameters,
+                               !check_only &&
+                                 parameters.shared.output.verbosity ==
+                                   Parameters::Verbosity::normal,
+                               out);
         if (check_only)
           {
             if (is_root)

@@ -285,6 +285,31 @@ namespace YarnImpact
     }
 
 
+    MemoryEstimate
+    memory_estimate(const YarnImpact::Parameters::Shared &shared,
+                    const Parameters &parameters)
+    {
+      using YarnImpact::Parameters::Symmetry;
+      const auto symmetry = shared.general.symmetry;
+      const double modelled =
+        (symmetry == Symmetry::none ? 1. : 0.5) * shared.yarn.length;
+      const double fibres =
+        (symmetry == Symmetry::quarter ? 0.5 : 1.) * shared.yarn.n_fibres;
+      MemoryEstimate e;
+      e.n_elements   = fibres * (modelled / parameters.sphere_spacing + 1.);
+      e.bytes        = 600. * e.n_elements;
+      e.element_name = "spheres";
+      const double f_fibres  = shared.yarn.n_fibres / 400.;
+      const double f_length  = shared.yarn.length / 0.0254;
+      const double f_spacing = 12e-6 / parameters.sphere_spacing;
+      e.parameter =
+        (f_fibres >= f_length && f_fibres >= f_spacing ? "Yarn/Number of fibres"
+         : f_length >= f_spacing                       ? "Yarn/Length"
+                                                       : "DEM/Sphere spacing");
+      return e;
+    }
+
+
     ContactLaw
     fibre_contact_law(const Parameters &prm,
                       const double truss_k,

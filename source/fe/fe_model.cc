@@ -397,8 +397,27 @@ namespace YarnImpact
                            parameters.n_axial_cells *
                            std::pow(8., parameters.global_refinements);
       require(cells <= 5e7,
-              "FE/Global refinements",
+              memory_estimate(shared, parameters).parameter,
               "gives more than 50 million cells");
+    }
+
+
+    MemoryEstimate
+    memory_estimate(const YarnImpact::Parameters::Shared &,
+                    const Parameters &parameters)
+    {
+      const double axial   = parameters.n_axial_cells / 100.;
+      const double section = std::pow(4., parameters.section_refinements);
+      const double global  = std::pow(8., parameters.global_refinements);
+      MemoryEstimate e;
+      e.n_elements   = 12. * 100. * axial * section * global;
+      e.bytes        = 6.5e3 * e.n_elements;
+      e.element_name = "cells";
+      e.parameter =
+        (axial >= section && axial >= global ? "FE/Cells along the axis"
+         : section >= global                 ? "FE/Section refinements"
+                                             : "FE/Global refinements");
+      return e;
     }
 
 
