@@ -10,6 +10,7 @@
 // and the transverse wave has crossed half the yarn.
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/core/projectile.h>
+#include <yarn_impact/core/time_stepping.h>
 #include <yarn_impact/dem/dem_model.h>
 
 #include <deal.II/base/mpi.h>
@@ -53,7 +54,6 @@ main(int argc, char **argv)
     (argc > 2 ? static_cast<unsigned int>(std::stoul(argv[2])) : 400);
 
   Parameters::Shared shared;
-  shared.general.model    = Parameters::ModelType::dem;
   shared.general.symmetry = Parameters::Symmetry::half;
   shared.yarn.length      = length;
   shared.projectile.diameter =
@@ -74,15 +74,7 @@ main(int argc, char **argv)
   const double dt = shared.time.safety_factor * model->stable_time_step();
   double force    = model->compute_forces(projectile, dt);
   const double memory_setup = peak_memory_mb();
-  const auto step           = [&]() {
-    model->kick(0.5 * dt);
-    projectile.kick(0.5 * dt, force);
-    model->drift(dt);
-    projectile.drift(dt);
-    force = model->compute_forces(projectile, dt);
-    model->kick(0.5 * dt);
-    projectile.kick(0.5 * dt, force);
-  };
+  const auto step   = [&]() { force = advance(*model, projectile, force, dt); };
   const auto n_warm = static_cast<unsigned long>(warm_up / dt + 0.5);
   for (unsigned long s = 0; s < n_warm; ++s)
     step();

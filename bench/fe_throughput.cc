@@ -6,9 +6,11 @@
  * Usage: bench_fe_throughput [n_steps] [prm file of the default case, or -
  * to skip it]
  */
-#include <yarn_impact/application.h>
+#include <yarn_impact/analysis/run_summary.h>
+#include <yarn_impact/app/application.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/projectile.h>
+#include <yarn_impact/core/time_stepping.h>
 #include <yarn_impact/fe/fe_model.h>
 
 #include <deal.II/base/mpi.h>
@@ -63,15 +65,7 @@ main(int argc, char **argv)
         static_cast<unsigned int>(1.2 * 0.5 * p.shared.yarn.length / 7950. /
                                   dt) +
         1;
-      const auto step = [&]() {
-        model->kick(0.5 * dt);
-        projectile.kick(0.5 * dt, f);
-        model->drift(dt);
-        projectile.drift(dt);
-        f = model->compute_forces(projectile, dt);
-        model->kick(0.5 * dt);
-        projectile.kick(0.5 * dt, f);
-      };
+      const auto step = [&]() { f = advance(*model, projectile, f, dt); };
       for (unsigned int s = 0; s < n_warm; ++s)
         step();
       MPI_Barrier(comm);
@@ -101,7 +95,8 @@ main(int argc, char **argv)
       ImpactSimulation simulation(p.shared,
                                   FE::create_model(p.shared, p.fe, comm),
                                   comm,
-                                  sink);
+                                  sink,
+                                  Analysis::run_hooks(p.shared));
       const auto summary = simulation.run();
       if (is_root)
         out << "default case " << argv[2] << ": " << summary.n_steps

@@ -40,17 +40,14 @@ namespace YarnImpact
         r.time       = t;
         r.projectile_velocity =
           mix(a.projectile_velocity, b.projectile_velocity);
-        r.model.fronts.longitudinal =
-          mix(a.model.fronts.longitudinal, b.model.fronts.longitudinal);
-        r.model.fronts.transverse =
-          mix(a.model.fronts.transverse, b.model.fronts.transverse);
-        r.model.fronts.spreading =
-          mix(a.model.fronts.spreading, b.model.fronts.spreading);
-        r.model.fronts.width_at_impact =
-          mix(a.model.fronts.width_at_impact, b.model.fronts.width_at_impact);
-        r.model.fronts.rms_width_at_impact =
-          mix(a.model.fronts.rms_width_at_impact,
-              b.model.fronts.rms_width_at_impact);
+        r.fronts.longitudinal =
+          mix(a.fronts.longitudinal, b.fronts.longitudinal);
+        r.fronts.transverse = mix(a.fronts.transverse, b.fronts.transverse);
+        r.fronts.spreading  = mix(a.fronts.spreading, b.fronts.spreading);
+        r.fronts.width_at_impact =
+          mix(a.fronts.width_at_impact, b.fronts.width_at_impact);
+        r.fronts.rms_width_at_impact =
+          mix(a.fronts.rms_width_at_impact, b.fronts.rms_width_at_impact);
         return r;
       }
 
@@ -99,7 +96,7 @@ namespace YarnImpact
               s.max_velocity_difference = std::abs(dv);
               s.time_of_max_difference  = row.time;
             }
-          const auto &f = row.model.fronts, &g = d.model.fronts;
+          const auto &f = row.fronts, &g = d.fronts;
           csv << row.time * 1e6 << ',' << row.projectile_velocity << ','
               << d.projectile_velocity << ',' << dv << ','
               << f.longitudinal * 1e3 << ',' << g.longitudinal * 1e3 << ','

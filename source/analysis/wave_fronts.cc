@@ -6,18 +6,6 @@ namespace YarnImpact
 {
   namespace Analysis
   {
-    void
-    StationProfile::resize(const unsigned int n)
-    {
-      for (auto *v : {&position,
-                      &axial_strain,
-                      &deflection,
-                      &width,
-                      &initial_width,
-                      &rms_width})
-        v->assign(n, 0.);
-    }
-
     WaveFrontPositions
     measure_wave_fronts(const StationProfile &profile,
                         const Parameters::WaveFronts &thresholds)

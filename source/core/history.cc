@@ -62,10 +62,10 @@ namespace YarnImpact
          << ',' << m.contact_energy * 1e3 << ',' << m.dissipated_energy * 1e3
          << ',' << r.external_work * 1e3 << ',' << r.energy_error * 1e2 << ','
          << m.max_strain << ',' << m.n_failed << ','
-         << m.fronts.longitudinal * 1e3 << ',' << m.fronts.transverse * 1e3
-         << ',' << m.fronts.spreading * 1e3 << ','
-         << m.fronts.width_at_impact * 1e3 << ',' << m.fronts.plateau_strain
-         << ',' << m.fronts.rms_width_at_impact * 1e3 << '\n';
+         << r.fronts.longitudinal * 1e3 << ',' << r.fronts.transverse * 1e3
+         << ',' << r.fronts.spreading * 1e3 << ','
+         << r.fronts.width_at_impact * 1e3 << ',' << r.fronts.plateau_strain
+         << ',' << r.fronts.rms_width_at_impact * 1e3 << '\n';
     file.append(line.str());
   }
 } // namespace YarnImpact

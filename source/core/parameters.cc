@@ -33,12 +33,6 @@ namespace YarnImpact
     void
     General::declare_parameters(ParameterHandler &prm)
     {
-      prm.declare_entry("Model",
-                        "fe",
-                        Patterns::Selection("fe|dem|both"),
-                        "Model to run: the mesoscopic finite-element yarn "
-                        "(fe), the microscopic discrete-element fibres (dem), "
-                        "or both on the same problem (both).");
       prm.declare_entry(
         "Symmetry",
         "half",
@@ -52,10 +46,6 @@ namespace YarnImpact
     void
     General::parse_parameters(ParameterHandler &prm)
     {
-      const std::string m = prm.get("Model");
-      model               = (m == "fe"    ? ModelType::fe
-                             : m == "dem" ? ModelType::dem
-                                          : ModelType::both);
       const std::string s = prm.get("Symmetry");
       symmetry            = (s == "none"   ? Symmetry::none
                              : s == "half" ? Symmetry::half

@@ -87,8 +87,9 @@ namespace YarnImpact
         void
         kick(const double dt) override
         {
-          // The kick is applied lazily, fused with the next drift (one pass
-          // over memory instead of two); observables add it on the fly.
+          // Deferred, as the contract allows: applied in the next drift,
+          // fused with it (one pass over memory instead of two);
+          // observables and snapshots add it on the fly.
           spheres.pending_kick += dt;
         }
 
@@ -101,15 +102,7 @@ namespace YarnImpact
         Observables
         observables() const override
         {
-          return meter.measure(projectile_contact,
-                               dissipated_local,
-                               cut_through);
-        }
-
-        bool
-        yarn_cut_through() const override
-        {
-          return cut_through;
+          return meter.measure(projectile_contact, dissipated_local);
         }
 
         AxialProperties
@@ -179,8 +172,7 @@ namespace YarnImpact
         /** Where the projectile was at the last force evaluation. */
         ProjectileContactState projectile_contact;
         /** Energy dissipated on this rank so far [J]. */
-        double dissipated_local  = 0.;
-        mutable bool cut_through = false;
+        double dissipated_local = 0.;
       };
 
 
@@ -197,8 +189,7 @@ namespace YarnImpact
         , fibre_law(fibre_contact_law(prm, chains.truss_k, chains.sphere_mass))
         , projectile_law(
             projectile_contact_law(prm, chains.truss_k, chains.sphere_mass))
-        , meter(shared.wave_fronts,
-                chains,
+        , meter(chains,
                 decomposition,
                 spheres,
                 lists,

@@ -1,5 +1,6 @@
 // The observables of the DEM impact model for the history: energies,
-// failed trusses, strains and the station profile of the wave fronts.
+// failed trusses, strains, cut-through and the station profile (analysis
+// measures the wave fronts on it).
 #pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/contact_kernels.h>
@@ -24,16 +25,13 @@ namespace YarnImpact
       }
 
 
-      ObservablesMeter::ObservablesMeter(
-        const YarnImpact::Parameters::WaveFronts &wave_fronts,
-        const FibreChains &chains,
-        const Decomposition &decomposition,
-        const Spheres &spheres,
-        const NeighbourLists &lists,
-        const ContactLaw &fibre_law,
-        const ContactLaw &projectile_law)
-        : wave_fronts(wave_fronts)
-        , chains(chains)
+      ObservablesMeter::ObservablesMeter(const FibreChains &chains,
+                                         const Decomposition &decomposition,
+                                         const Spheres &spheres,
+                                         const NeighbourLists &lists,
+                                         const ContactLaw &fibre_law,
+                                         const ContactLaw &projectile_law)
+        : chains(chains)
         , decomposition(decomposition)
         , spheres(spheres)
         , lists(lists)
@@ -69,8 +67,7 @@ namespace YarnImpact
 
       Observables
       ObservablesMeter::measure(const ProjectileContactState &contact_at,
-                                const double dissipated,
-                                bool &cut_through) const
+                                const double dissipated) const
       {
         const unsigned int nf = chains.nf, n_st = chains.n_st,
                            n_prof = chains.n_prof, s_impact = chains.s_impact;
@@ -234,7 +231,7 @@ namespace YarnImpact
         o.n_failed          = static_cast<unsigned long>(sums[4] + 0.5);
         o.max_strain        = std::max(0., buf[0]);
 
-        Analysis::StationProfile profile;
+        StationProfile &profile = o.profile;
         profile.resize(n_prof);
         for (unsigned int k = 0; k < n_prof; ++k)
           {
@@ -246,11 +243,10 @@ namespace YarnImpact
             profile.rms_width[k] =
               4. * std::sqrt(pz2[k] / std::max(pz2[n_prof + k], 1e-300));
           }
-        o.fronts     = Analysis::measure_wave_fronts(profile, wave_fronts);
         bool all_cut = nf > 0;
         for (unsigned int f = 0; f < nf; ++f)
           all_cut = all_cut && fibre_cut[f] > 0.;
-        cut_through = all_cut;
+        o.cut_through = all_cut;
         return o;
       }
     } // namespace internal

@@ -1,4 +1,3 @@
-#include <yarn_impact/analysis/wave_fronts.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/fe/constitutive_law.h>
 
@@ -135,7 +134,7 @@ namespace YarnImpact
 
       const bool quarter =
         shared.general.symmetry == YarnImpact::Parameters::Symmetry::quarter;
-      Analysis::StationProfile profile;
+      StationProfile &profile = o.profile;
       profile.resize(n);
       for (unsigned int s = 0; s < n; ++s)
         {
@@ -152,7 +151,9 @@ namespace YarnImpact
         const_cast<std::vector<double> &>(initial_width) = profile.width;
       profile.initial_width = initial_width;
 
-      o.fronts = Analysis::measure_wave_fronts(profile, shared.wave_fronts);
+      // Only a yarn with failed cells can be cut (and the check is
+      // collective: n_failed is the same on every rank).
+      o.cut_through = o.n_failed > 0 && yarn_cut_through();
       return o;
     }
 
@@ -305,7 +306,6 @@ namespace YarnImpact
     // instantiated by create_model()).
 #define YARN_IMPACT_FE_INSTANTIATE(type, Law, member)                      \
   template Observables YarnModel<Law>::observables() const;                \
-  template bool YarnModel<Law>::yarn_cut_through() const;                  \
   template std::string YarnModel<Law>::write_snapshot(const std::string &, \
                                                       const unsigned int,  \
                                                       const double) const;

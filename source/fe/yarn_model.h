@@ -89,14 +89,10 @@ namespace YarnImpact
       void
       drift(const double dt) override;
 
-      /** Energies [J], strains, failed cells and the station profile of
-       * the whole yarn. Collective. */
+      /** Energies [J], strains, failed cells, cut-through and the station
+       * profile of the whole yarn. Collective. */
       Observables
       observables() const override;
-
-      /** Whether some cell layer has broken through. Collective. */
-      bool
-      yarn_cut_through() const override;
 
       /** Density, area and axial law of the discretised yarn (Smith). */
       AxialProperties
@@ -124,6 +120,11 @@ namespace YarnImpact
       }
 
     private:
+      /** Whether some cell layer has broken through, leaving no load path
+       * between the clamps. Collective. */
+      bool
+      yarn_cut_through() const;
+
       /** Current positions [m] of the 8 vertices of owned cell c. */
       void
       vertex_positions(const unsigned int c, double (&p)[n_nodes][3]) const;

@@ -32,7 +32,6 @@ namespace
     // failure at 1 % and one without: the first must lose a truss at the
     // very step at which the second's largest strain passes 1 %.
     Parameters::Shared p;
-    p.general.model               = Parameters::ModelType::dem;
     p.general.symmetry            = Parameters::Symmetry::half;
     p.yarn.length                 = 10e-3;
     p.yarn.n_fibres               = 1;
@@ -94,7 +93,6 @@ namespace
       const bool breaking = false)
   {
     Parameters::Shared p;
-    p.general.model            = Parameters::ModelType::dem;
     p.general.symmetry         = symmetry;
     p.yarn.length              = 2e-3;
     p.yarn.n_fibres            = 13;

@@ -3,7 +3,7 @@
 // velocity history within 0.5 % of the impact velocity over 40 us, and the
 // same yarn mass.
 
-#include <yarn_impact/application.h>
+#include <yarn_impact/app/application.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/fe/fe_model.h>
 

@@ -3,7 +3,7 @@
 // exact with area preservation; the FE yarn's mass against rho * pi a b L
 // for every symmetry.
 
-#include <yarn_impact/application.h>
+#include <yarn_impact/app/application.h>
 #include <yarn_impact/core/projectile.h>
 #include <yarn_impact/fe/fe_model.h>
 #include <yarn_impact/fe/yarn_mesh.h>

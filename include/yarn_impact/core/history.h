@@ -1,7 +1,7 @@
 #ifndef yarn_impact_core_history_h
 #define yarn_impact_core_history_h
 
-#include <yarn_impact/core/impact_model.h>
+#include <yarn_impact/core/observables.h>
 #include <yarn_impact/core/output_file.h>
 
 #include <string>
@@ -31,8 +31,12 @@ namespace YarnImpact
     /** Energy balance error: (current total + dissipated - external work -
      * initial total) / initial total [-]. */
     double energy_error = 0.;
-    /** The model's observables. */
+    /** The model's observables (their station profile emptied once the
+     * fronts are measured on it). */
     Observables model;
+    /** Wave fronts and section widths measured on the model's station
+     * profile (zero where the run measures none). */
+    WaveFrontPositions fronts;
   };
 
   /**

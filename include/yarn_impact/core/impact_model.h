@@ -1,7 +1,7 @@
 #ifndef yarn_impact_core_impact_model_h
 #define yarn_impact_core_impact_model_h
 
-#include <yarn_impact/analysis/wave_fronts.h>
+#include <yarn_impact/core/observables.h>
 
 #include <functional>
 #include <iosfwd>
@@ -10,29 +10,6 @@
 namespace YarnImpact
 {
   class Projectile;
-
-  /**
-   * Observables of a model at one instant, defined the same way in both
-   * models (doc/user-guide.md, "History columns"). All values are those of
-   * the whole yarn, whatever the symmetry.
-   */
-  struct Observables
-  {
-    /** Kinetic energy of the yarn [J]. */
-    double kinetic_energy = 0.;
-    /** Elastic (strain) energy of the yarn [J]. */
-    double elastic_energy = 0.;
-    /** Energy stored in the contact penalty springs [J]. */
-    double contact_energy = 0.;
-    /** Energy dissipated so far by friction and contact damping [J]. */
-    double dissipated_energy = 0.;
-    /** Largest longitudinal strain in the yarn [-]. */
-    double max_strain = 0.;
-    /** Failed FE cells or broken DEM trusses, whole yarn [-]. */
-    unsigned long n_failed = 0;
-    /** Wave fronts and section width. */
-    Analysis::WaveFrontPositions fronts;
-  };
 
   /**
    * What Smith theory and the model-consistency report need to know about a
@@ -66,14 +43,34 @@ namespace YarnImpact
 
   /**
    * The interface every yarn model implements so that ImpactSimulation can
-   * drive it (doc/theory.md section 3.1). The time loop is velocity Verlet:
+   * drive it (doc/theory.md section 3.1). The only caller of the step
+   * phases is advance() (core/time_stepping.h), which makes one velocity
+   * Verlet step with the projectile beside the model:
    *
    * @code
-   * kick(dt/2); drift(dt); F = compute_forces(projectile); kick(dt/2);
+   * kick(dt/2); drift(dt); F = compute_forces(projectile, dt); kick(dt/2);
    * @endcode
    *
-   * with the projectile integrated beside it by the same scheme. All
-   * functions are collective over the model's MPI communicator.
+   * Every step calls the phases in this order, and a model may rely on it
+   * and on nothing else:
+   * - after setup(), compute_forces() is called once before the first
+   *   step;
+   * - kick() is a velocity update with the forces of the last
+   *   compute_forces(). A model may defer it: record it and apply it at
+   *   the next drift(), fused with the position update (the DEM does, one
+   *   pass over memory instead of two). Whatever it defers, observables()
+   *   and write_snapshot() report the velocities as if it had been
+   *   applied;
+   * - drift() applies every deferred kick, then moves the positions; it
+   *   may also prepare the next compute_forces() from the new positions
+   *   (the DEM zeroes the forces it has consumed, and updates its section
+   *   extents and neighbour-list criterion on the way);
+   * - compute_forces() follows every drift() and leaves what the next
+   *   kick() needs.
+   *
+   * observables(), write_snapshot() and stable_time_step() may be called
+   * between steps (after the second kick), never inside one. All functions
+   * are collective over the model's MPI communicator.
    */
   class ImpactModel
   {
@@ -114,22 +111,22 @@ namespace YarnImpact
     compute_forces(const Projectile &projectile, const double dt) = 0;
 
     /** Velocity update \f$v \mathrel{+}= \Delta t\, a\f$ with the
-     * accelerations of the last compute_forces(). @param dt [s] */
+     * accelerations of the last compute_forces(); may be deferred to the
+     * next drift() (see the class documentation). @param dt [s] */
     virtual void
     kick(const double dt) = 0;
 
-    /** Position update \f$x \mathrel{+}= \Delta t\, v\f$. @param dt [s] */
+    /** Apply the deferred kicks, if any, then the position update
+     * \f$x \mathrel{+}= \Delta t\, v\f$; may prepare the next
+     * compute_forces() (see the class documentation). @param dt [s] */
     virtual void
     drift(const double dt) = 0;
 
-    /** Observables of the current state (collective). */
+    /** Observables of the current state, cut-through and station profile
+     * included (collective). Calling it or not changes nothing in the
+     * steps that follow. */
     virtual Observables
     observables() const = 0;
-
-    /** Whether the yarn has been cut through (no load path left between the
-     * clamps); the run stops then. */
-    virtual bool
-    yarn_cut_through() const = 0;
 
     /** Axial properties for Smith theory and the consistency report. */
     virtual AxialProperties

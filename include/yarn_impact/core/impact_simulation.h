@@ -7,11 +7,11 @@
 
 #include <mpi.h>
 
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace YarnImpact
@@ -26,57 +26,60 @@ namespace YarnImpact
     using std::runtime_error::runtime_error;
   };
 
-  /** What a finished run measured, for the summary and the checks. */
-  struct RunSummary
+  /** What the time loop knows of a finished run (analysis adds the
+   * verification window and the checks: analysis/run_summary.h). */
+  struct RunResult
   {
+    /** The model's name (ImpactModel::name()). */
     std::string model_name;
     /** Mass per length of the yarn as discretised [kg/m]. */
     double mass_per_length = 0.;
     /** Axial stiffness EA of the yarn as discretised [N]. */
-    double axial_stiffness    = 0.;
-    unsigned long n_steps     = 0;
-    double end_time           = 0.;  ///< [s]
-    double wall_time          = 0.;  ///< [s]
-    double max_energy_error   = 0.;  ///< fraction of initial energy
-    double first_failure_time = -1.; ///< [s], -1 if none
-    double final_velocity     = 0.;  ///< [m/s]
-    /** Quantities in the verification window. */
-    double mean_deceleration  = 0.; ///< [m/s^2]
-    double plateau_strain     = 0.; ///< [-]
-    double longitudinal_speed = 0.; ///< [m/s]
-    double transverse_speed   = 0.; ///< [m/s]
-    /** Time at which the longitudinal front reached the clamp inside the
-     * window, where its speed fit stops [s]; -1 if it did not. */
-    double front_at_clamp_time = -1.;
+    double axial_stiffness = 0.;
+    /** Steps made [-]. */
+    unsigned long n_steps = 0;
+    /** Simulated time reached [s]. */
+    double end_time = 0.;
+    /** Wall time of the run, set-up included [s]. */
+    double wall_time = 0.;
+    /** Largest energy balance error of the history rows, as a fraction of
+     * the initial energy [-]. */
+    double max_energy_error = 0.;
+    /** Time of the first history row with a failed cell or truss [s], -1
+     * if none. */
+    double first_failure_time = -1.;
+    /** Impact speed of the projectile at the end [m/s]. */
+    double final_velocity = 0.;
     /** Time at which the yarn was cut through [s], -1 if it was not. */
     double cut_through_time = -1.;
-    /** History rows at ten evenly spaced times (interpolated). */
-    std::vector<HistoryRow> samples;
-    /** Lines "name: measured, reference, relative error, PASSED/FAILED". */
-    std::vector<std::string> checks;
-    /** The same lines without the measured numbers. */
-    std::vector<std::string> brief_checks;
     /** The model's remarks (ImpactModel::remarks()), printed in every
      * format. */
     std::string model_remarks;
-    /**
-     * Print the regression format (Output/Verbosity = test): only what does
-     * not depend on round-off. Contact makes late times of a run sensitive
-     * to the last bits (different summation orders change the velocity at
-     * 20 us by about 1e-4 m/s), so the numbers printed are the early
-     * history samples (t <= 16 us) and the window measurements; checks
-     * print their verdict only.
-     */
-    bool regression_format = false;
-    /** Whether every requested check passed. */
-    bool checks_passed = true;
+  };
+
+  /**
+   * What a layer above core adds to a run without core knowing it (the
+   * application passes Analysis::run_hooks()). Each hook may be empty.
+   */
+  struct RunHooks
+  {
+    /** The fronts and widths of a history row, measured on the model's
+     * station profile; without it they stay 0. Called on every rank. */
+    std::function<WaveFrontPositions(const StationProfile &)> measure_fronts;
+    /** More lines for the set-up report on the screen, after the model's
+     * mass and time step (not with Output/Verbosity = test). Called on
+     * every rank; only rank 0's @p out reaches the screen. */
+    std::function<void(const ImpactModel &model, std::ostream &out)>
+      report_setup;
   };
 
   /**
    * The time loop shared by all models (doc/theory.md section 3.1): owns
-   * the clock, the projectile, the history, the snapshots and the progress
-   * line, and drives one ImpactModel with velocity Verlet (central
-   * difference).
+   * the schedule (Schedule: clock and output cadence), the projectile, the
+   * history, the snapshots and the progress line, and drives one
+   * ImpactModel with velocity Verlet (advance()). It stops at the end
+   * time, when the projectile stops, or after the cut-through when asked;
+   * a numerical failure throws RunError.
    */
   class ImpactSimulation
   {
@@ -86,11 +89,13 @@ namespace YarnImpact
      * @param model the model to drive
      * @param communicator the model's MPI communicator
      * @param out screen stream (written on rank 0 only)
+     * @param hooks what the layer above adds (fronts, set-up report)
      */
     ImpactSimulation(const Parameters::Shared &parameters,
                      std::unique_ptr<ImpactModel> model,
                      const MPI_Comm communicator,
-                     std::ostream &out);
+                     std::ostream &out,
+                     RunHooks hooks = {});
 
     ~ImpactSimulation();
 
@@ -100,7 +105,7 @@ namespace YarnImpact
      * @throws RunError on a numerical blow-up (after keeping the last good
      * snapshot and the history up to it)
      */
-    RunSummary
+    RunResult
     run();
 
     /** The history rows recorded so far. */
@@ -116,9 +121,6 @@ namespace YarnImpact
     std::unique_ptr<Implementation> impl;
   };
 
-  /** Write @p summary (and the Smith references it quotes) as text. */
-  void
-  print_summary(const RunSummary &summary, std::ostream &out);
 } // namespace YarnImpact
 
 #endif

@@ -18,14 +18,6 @@ namespace YarnImpact
    */
   namespace Parameters
   {
-    /** Which model(s) a run drives. */
-    enum class ModelType
-    {
-      fe,
-      dem,
-      both
-    };
-
     /** Symmetry used to reduce the modelled domain (doc/fe-model.md and
      * doc/dem.md, section 1). */
     enum class Symmetry
@@ -42,8 +34,6 @@ namespace YarnImpact
     /** Top-level entries (no subsection). */
     struct General
     {
-      /** Model(s) to run. */
-      ModelType model = ModelType::fe;
       /** Symmetry of the modelled domain. */
       Symmetry symmetry = Symmetry::half;
 

@@ -21,8 +21,9 @@ namespace YarnImpact
       /**
        * The observables of the DEM impact model for the history: energies
        * (kinetic, trusses, contacts, dissipated), failed trusses, the
-       * largest strain and the profile of the stations folded about x = 0,
-       * from which the wave fronts are measured. Reads the model's parts
+       * largest strain, whether the yarn is cut through, and the profile of
+       * the stations folded about x = 0 (on which analysis measures the
+       * wave fronts). Reads the model's parts
        * given at construction; every call is collective.
        */
       class ObservablesMeter
@@ -30,8 +31,7 @@ namespace YarnImpact
       public:
         /** A meter of the model made of these parts; @p fibre_law and
          * @p projectile_law are read at every measure(). */
-        ObservablesMeter(const YarnImpact::Parameters::WaveFronts &wave_fronts,
-                         const FibreChains &chains,
+        ObservablesMeter(const FibreChains &chains,
                          const Decomposition &decomposition,
                          const Spheres &spheres,
                          const NeighbourLists &lists,
@@ -46,16 +46,14 @@ namespace YarnImpact
         /**
          * The observables now; the projectile contacts are those of the
          * last force evaluation, at @p contact, @p dissipated [J] is this
-         * rank's dissipated energy so far. @p cut_through tells whether
+         * rank's dissipated energy so far. The yarn is cut through when
          * every fibre has a failed truss.
          */
         Observables
         measure(const ProjectileContactState &contact,
-                const double dissipated,
-                bool &cut_through) const;
+                const double dissipated) const;
 
       private:
-        const YarnImpact::Parameters::WaveFronts &wave_fronts;
         const FibreChains &chains;
         const Decomposition &decomposition;
         const Spheres &spheres;

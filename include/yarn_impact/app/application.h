@@ -1,6 +1,7 @@
-#ifndef yarn_impact_application_h
-#define yarn_impact_application_h
+#ifndef yarn_impact_app_application_h
+#define yarn_impact_app_application_h
 
+#include <yarn_impact/app/model_factory.h>
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/dem/elementary_test.h>
@@ -19,6 +20,8 @@ namespace YarnImpact
   /** Every parameter of a run: the shared ones and those of each model. */
   struct AllParameters
   {
+    /** Model(s) to run (entry `Model`). */
+    ModelType model = ModelType::fe;
     Parameters::Shared shared;
     FE::Parameters fe;
     DEM::Parameters dem;

@@ -1,4 +1,4 @@
-#include <yarn_impact/application.h>
+#include <yarn_impact/app/application.h>
 
 #include <deal.II/base/logstream.h>
 #include <deal.II/base/mpi.h>

@@ -1,5 +1,7 @@
 #include <yarn_impact/analysis/model_comparison.h>
-#include <yarn_impact/application.h>
+#include <yarn_impact/analysis/run_summary.h>
+#include <yarn_impact/app/application.h>
+#include <yarn_impact/app/model_factory.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
@@ -216,13 +218,13 @@ namespace YarnImpact
     {
       if (p.elementary.loading != DEM::ElementaryLoading::none)
         return;
-      const auto model = p.shared.general.model;
+      const auto model = p.model;
       std::vector<std::string> lines;
-      if (model != Parameters::ModelType::dem)
+      if (model != ModelType::dem)
         lines.push_back(check_memory(FE::memory_estimate(p.shared, p.fe),
                                      "fe",
                                      MPI_COMM_WORLD));
-      if (model != Parameters::ModelType::fe)
+      if (model != ModelType::fe)
         lines.push_back(check_memory(DEM::memory_estimate(p.shared, p.dem),
                                      "dem",
                                      MPI_COMM_WORLD));
@@ -231,19 +233,13 @@ namespace YarnImpact
           out << line << '\n';
     }
 
-    std::unique_ptr<ImpactModel>
-    create_model(const Parameters::ModelType type, const AllParameters &p)
-    {
-      if (type == Parameters::ModelType::dem)
-        return DEM::create_model(p.shared, p.dem, MPI_COMM_WORLD);
-      return FE::create_model(p.shared, p.fe, MPI_COMM_WORLD);
-    }
   } // namespace
 
 
   void
   AllParameters::declare_parameters(ParameterHandler &prm)
   {
+    declare_model_type(prm);
     Parameters::Shared::declare_parameters(prm);
     FE::Parameters::declare_parameters(prm);
     DEM::Parameters::declare_parameters(prm);
@@ -253,12 +249,13 @@ namespace YarnImpact
   void
   AllParameters::parse_parameters(ParameterHandler &prm)
   {
+    model = parse_model_type(prm);
     shared.parse_parameters(prm);
     fe.parse_parameters(prm);
     dem.parse_parameters(prm);
     elementary.parse_parameters(prm);
     Parameters::require(elementary.loading == DEM::ElementaryLoading::none ||
-                          shared.general.model == Parameters::ModelType::dem,
+                          model == ModelType::dem,
                         "Elementary test/Loading",
                         "is a loading of the DEM model: it needs Model = dem");
     // Every set-up check that needs no MPI ranks is made here, so that
@@ -268,9 +265,9 @@ namespace YarnImpact
       DEM::validate(shared, dem, true);
     else
       {
-        if (shared.general.model != Parameters::ModelType::dem)
+        if (model != ModelType::dem)
           FE::validate(shared, fe);
-        if (shared.general.model != Parameters::ModelType::fe)
+        if (model != ModelType::fe)
           DEM::validate(shared, dem);
       }
   }
@@ -401,11 +398,11 @@ namespace YarnImpact
             return 0;
           }
 
-        std::vector<Parameters::ModelType> models;
-        if (parameters.shared.general.model == Parameters::ModelType::both)
-          models = {Parameters::ModelType::fe, Parameters::ModelType::dem};
+        std::vector<ModelType> models;
+        if (parameters.model == ModelType::both)
+          models = {ModelType::fe, ModelType::dem};
         else
-          models = {parameters.shared.general.model};
+          models = {parameters.model};
 
         bool passed = true;
         std::ostringstream summary_text;
@@ -415,12 +412,20 @@ namespace YarnImpact
         for (const auto type : models)
           {
             ImpactSimulation simulation(parameters.shared,
-                                        create_model(type, parameters),
+                                        create_model(type,
+                                                     parameters,
+                                                     MPI_COMM_WORLD),
                                         MPI_COMM_WORLD,
-                                        out);
+                                        out,
+                                        Analysis::run_hooks(parameters.shared));
             try
               {
-                const RunSummary summary = simulation.run();
+                const RunResult result = simulation.run();
+                const RunSummary summary =
+                  Analysis::summarise_run(result,
+                                          simulation.history(),
+                                          simulation.model().axial_properties(),
+                                          parameters.shared);
                 print_summary(summary, summary_text);
                 passed = passed && summary.checks_passed;
               }

@@ -1,0 +1,105 @@
+#ifndef yarn_impact_core_observables_h
+#define yarn_impact_core_observables_h
+
+#include <vector>
+
+namespace YarnImpact
+{
+  /**
+   * The yarn seen station by station along its axis, the same way in both
+   * models: a station is an FE node layer or a DEM cross-section of
+   * spheres. Stations are ordered by increasing distance from the impact
+   * point and cover one side of the yarn (x >= 0); values of the side
+   * x < 0, when modelled, are folded onto it by taking the larger one.
+   * A model fills it; analysis (wave_fronts.h) measures the fronts on it.
+   */
+  struct StationProfile
+  {
+    /** Current (laboratory-frame) distance |x| of the station from the
+     * impact plane [m]. */
+    std::vector<double> position;
+    /** Longitudinal (fibre) strain, \f$\lambda_f - 1\f$, averaged over the
+     * section at the station (area-weighted, so that it is the yarn's
+     * tension over its axial stiffness) [-]. */
+    std::vector<double> axial_strain;
+    /** Deflection in the impact direction, \f$-u_y\f$, the largest over
+     * the station [m]. */
+    std::vector<double> deflection;
+    /** Current width of the section (extent along z) [m]. */
+    std::vector<double> width;
+    /** Width of the section at t = 0 [m]. */
+    std::vector<double> initial_width;
+    /** Second-moment width of the section, \f$4\sqrt{\langle z^2
+     * \rangle}\f$ about the plane z = 0, area-weighted (FE: lumped nodal
+     * masses; DEM: one weight per fibre centre). It is the full width
+     * 2 a_z of a uniformly filled ellipse, and means the same in both
+     * models (doc/identification.md section 2.4) [m]. */
+    std::vector<double> rms_width;
+
+    /** Resize all arrays to @p n stations, filled with zeros. */
+    void
+    resize(const unsigned int n);
+
+    /** Number of stations. */
+    unsigned int
+    size() const
+    {
+      return position.size();
+    }
+  };
+
+  /** Wave fronts and section data measured on a StationProfile (by
+   * Analysis::measure_wave_fronts); one per history row. */
+  struct WaveFrontPositions
+  {
+    /** Longitudinal (strain) front: outermost station with axial strain
+     * above the strain threshold [m]. */
+    double longitudinal = 0.;
+    /** Transverse front: outermost station deflected by more than the
+     * deflection threshold [m]. */
+    double transverse = 0.;
+    /** Spreading front: outermost station whose width grew by more than
+     * the spreading threshold [m]. */
+    double spreading = 0.;
+    /** Section width at the impact point (first station) [m]. */
+    double width_at_impact = 0.;
+    /** Second-moment width at the impact point (first station) [m]. */
+    double rms_width_at_impact = 0.;
+    /** Mean axial strain in the middle half of the region between the
+     * transverse and the longitudinal fronts: Smith's strain behind the
+     * longitudinal front [-]. */
+    double plateau_strain = 0.;
+  };
+
+  /**
+   * What a model observes of itself at one instant (ImpactModel::
+   * observables()), defined the same way in both models (doc/user-guide.md,
+   * "History columns"). All values are those of the whole yarn, whatever
+   * the symmetry. Nothing here is measured by analysis: the fronts are
+   * measured on @p profile by the layer above (HistoryRow::fronts).
+   */
+  struct Observables
+  {
+    /** Kinetic energy of the yarn [J]. */
+    double kinetic_energy = 0.;
+    /** Elastic (strain) energy of the yarn [J]. */
+    double elastic_energy = 0.;
+    /** Energy stored in the contact penalty springs [J]. */
+    double contact_energy = 0.;
+    /** Energy dissipated so far by friction and contact damping [J]. */
+    double dissipated_energy = 0.;
+    /** Largest longitudinal strain in the yarn [-]. */
+    double max_strain = 0.;
+    /** Failed FE cells or broken DEM trusses, whole yarn [-]. */
+    unsigned long n_failed = 0;
+    /** Whether the yarn is cut through: no load path left between the
+     * clamps (the run may stop then). */
+    bool cut_through = false;
+    /** The station profile of this instant, from which the fronts are
+     * measured. The history keeps the fronts, not the profile (emptied
+     * once measured: it is a few thousand numbers per row). */
+    StationProfile profile;
+  };
+} // namespace YarnImpact
+
+#endif

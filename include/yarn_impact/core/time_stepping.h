@@ -1,0 +1,194 @@
+#ifndef yarn_impact_core_time_stepping_h
+#define yarn_impact_core_time_stepping_h
+
+#include <yarn_impact/core/parameters.h>
+
+#include <algorithm>
+
+namespace dealii
+{
+  class TimerOutput;
+}
+
+namespace YarnImpact
+{
+  class ImpactModel;
+  class Projectile;
+
+  /**
+   * One velocity-Verlet step of @p model with @p projectile beside it, the
+   * only place that calls the model's step phases (their contract is in
+   * ImpactModel):
+   *
+   * @code
+   * model.kick(dt/2);  projectile.kick(dt/2, force)
+   * model.drift(dt);   projectile.drift(dt)
+   * F = model.compute_forces(projectile, dt)
+   * model.kick(dt/2);  projectile.kick(dt/2, F)
+   * @endcode
+   *
+   * @param force force of the yarn on the projectile at the start of the
+   * step, as the last compute_forces() returned it [N]
+   * @param dt the step [s]
+   * @param timer if given, the phases are timed in its sections "time
+   * integration" and "forces"
+   * @return the force of the yarn on the projectile at the end of the step
+   * [N]
+   */
+  double
+  advance(ImpactModel &model,
+          Projectile &projectile,
+          const double force,
+          const double dt,
+          dealii::TimerOutput *timer = nullptr);
+
+
+  /**
+   * The clock of a run and its output cadence: time, step number and time
+   * step, when the next history row and snapshot are due, and the end
+   * time. Times are compared with a tolerance of 1e-9 of the end time, so
+   * that output intervals that do not divide into whole steps in binary
+   * still fall on the step that reaches them.
+   */
+  class Schedule
+  {
+  public:
+    /** A clock at t = 0, step 0, with the first row and snapshot due one
+     * interval later. */
+    Schedule(const Parameters::Time &time, const Parameters::Output &output)
+      : time_parameters(time)
+      , output(output)
+      , eps(1e-9 * time.end_time)
+      , next_history(output.history_interval)
+      , next_snapshot(output.snapshot_interval)
+    {}
+
+    /** Simulated time [s]. */
+    double
+    time() const
+    {
+      return t;
+    }
+
+    /** Steps made so far [-]. */
+    unsigned long
+    step() const
+    {
+      return n_steps;
+    }
+
+    /** The current time step: the safety factor times the last critical
+     * step given to set_critical_step() [s]. */
+    double
+    time_step() const
+    {
+      return dt;
+    }
+
+    /** Tolerance of the time comparisons [s]. */
+    double
+    epsilon() const
+    {
+      return eps;
+    }
+
+    /** Whether the end time is not reached yet. */
+    bool
+    running() const
+    {
+      return t < time_parameters.end_time - eps;
+    }
+
+    /** Whether the end time is reached. */
+    bool
+    at_end() const
+    {
+      return t >= time_parameters.end_time - eps;
+    }
+
+    /** Whether the critical step is to be recomputed before the next step
+     * (every Time/Time step update interval steps, the first one
+     * included). */
+    bool
+    time_step_update_due() const
+    {
+      return n_steps % time_parameters.time_step_update_interval == 0;
+    }
+
+    /** Set the time step from the model's critical step @p critical [s]. */
+    void
+    set_critical_step(const double critical)
+    {
+      dt = time_parameters.safety_factor * critical;
+    }
+
+    /** The next step: the time step, shortened to land on the end time
+     * [s]. */
+    double
+    next_step() const
+    {
+      return std::min(dt, time_parameters.end_time - t);
+    }
+
+    /** Count a step of @p h [s] (next_step()) as made. */
+    void
+    advance(const double h)
+    {
+      t += h;
+      ++n_steps;
+    }
+
+    /** Whether a history row is due now (at its interval or at the end). */
+    bool
+    history_due() const
+    {
+      return t >= next_history - eps || at_end();
+    }
+
+    /** Whether a snapshot is due now (at its interval or at the end, and
+     * snapshots are on). */
+    bool
+    snapshot_due() const
+    {
+      return snapshots_on() && (t >= next_snapshot - eps || at_end());
+    }
+
+    /** Whether snapshots are written at all (Output/Snapshot interval >
+     * 0). */
+    bool
+    snapshots_on() const
+    {
+      return output.snapshot_interval > 0.;
+    }
+
+    /** A history row was written now: the next one is due at the first
+     * interval after now. */
+    void
+    history_written()
+    {
+      while (next_history <= t + eps)
+        next_history += output.history_interval;
+    }
+
+    /** A snapshot was written now: the next one is due at the first
+     * interval after now. */
+    void
+    snapshot_written()
+    {
+      while (next_snapshot <= t + eps)
+        next_snapshot += output.snapshot_interval;
+    }
+
+  private:
+    const Parameters::Time time_parameters;
+    const Parameters::Output output;
+    const double eps;
+    double t              = 0.;
+    unsigned long n_steps = 0;
+    double dt             = 0.;
+    double next_history;
+    double next_snapshot;
+  };
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,41 @@
+#include <yarn_impact/app/application.h>
+#include <yarn_impact/app/model_factory.h>
+#include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/fe/fe_model.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace YarnImpact
+{
+  void
+  declare_model_type(dealii::ParameterHandler &prm)
+  {
+    prm.declare_entry("Model",
+                      "fe",
+                      dealii::Patterns::Selection("fe|dem|both"),
+                      "Model to run: the mesoscopic finite-element yarn "
+                      "(fe), the microscopic discrete-element fibres (dem), "
+                      "or both on the same problem (both).");
+  }
+
+
+  ModelType
+  parse_model_type(dealii::ParameterHandler &prm)
+  {
+    const std::string m = prm.get("Model");
+    return (m == "fe"    ? ModelType::fe
+            : m == "dem" ? ModelType::dem
+                         : ModelType::both);
+  }
+
+
+  std::unique_ptr<ImpactModel>
+  create_model(const ModelType type,
+               const AllParameters &p,
+               const MPI_Comm communicator)
+  {
+    if (type == ModelType::dem)
+      return DEM::create_model(p.shared, p.dem, communicator);
+    return FE::create_model(p.shared, p.fe, communicator);
+  }
+} // namespace YarnImpact
