@@ -95,8 +95,11 @@ def run_case(args, model, velocity, end_time):
         if kind == "dem" and args.np > 1:
             command = ["mpirun", "-np", str(args.np)] + command
         start = time.time()
+        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
+                   OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
         with open(os.path.join(args.out, name + ".log"), "w") as log:
-            rc = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT)
+            rc = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT,
+                                 env=env)
         print("  %-10s %6.0f m/s to %4.1f us: exit %d, %.0f s" %
               (model, velocity, end_time * 1e6, rc, time.time() - start),
               flush=True)
@@ -104,7 +107,11 @@ def run_case(args, model, velocity, end_time):
 
 
 def measure(out, kind, velocity):
-    with open(os.path.join(out, "history_%s.csv" % kind)) as f:
+    history = os.path.join(out, "history_%s.csv" % kind)
+    if not os.path.exists(history):
+        sys.exit("ballistic_sweep: the run in %s wrote no history: see %s.log"
+                 % (out, out))
+    with open(history) as f:
         rows = list(csv.DictReader(f))
     v = [float(r["projectile velocity [m/s]"]) for r in rows]
     ke = [float(r["projectile kinetic energy [mJ]"]) for r in rows]
