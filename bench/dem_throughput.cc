@@ -59,10 +59,15 @@ main(int argc, char **argv)
   shared.projectile.diameter =
     std::min(shared.projectile.diameter, 0.5 * length);
   DEM::Parameters dem;
-  if (argc > 3)
+  // "default" (as the usage line offers) or "-" keeps the default value.
+  const auto given = [&](const int i) {
+    return argc > i && std::string(argv[i]) != "default" &&
+           std::string(argv[i]) != "-";
+  };
+  if (given(3))
     dem.skin = std::stod(argv[3]);
-  const double warm_up = (argc > 4 ? std::stod(argv[4]) * 1e-6 : 0.);
-  if (argc > 5)
+  const double warm_up = (given(4) ? std::stod(argv[4]) * 1e-6 : 0.);
+  if (given(5))
     dem.list_block = static_cast<unsigned int>(std::stoul(argv[5]));
 
   auto model = DEM::create_model(shared, dem, comm);

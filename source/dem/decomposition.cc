@@ -246,7 +246,10 @@ namespace YarnImpact
         if (!(m > 0.))
           throw RunError("[dem] a sphere off the symmetry plane crossed "
                          "x = 0 (it passed through its own mirror "
-                         "image); run the case with Symmetry = none");
+                         "image): the motion under the projectile blew "
+                         "up, which no symmetry would survive; lower "
+                         "Time/Safety factor, or the contact stiffness "
+                         "ratios of subsection DEM");
       }
     } // namespace internal
   }   // namespace DEM

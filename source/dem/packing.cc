@@ -104,7 +104,8 @@ namespace YarnImpact
                     const unsigned int n,
                     const double d,
                     const double a_y,
-                    const double a_z)
+                    const double a_z,
+                    const double max_scale)
     {
       const std::string name = "DEM/Fibre file";
       std::ifstream in(file);
@@ -151,9 +152,22 @@ namespace YarnImpact
                             std::to_string(n));
       double scale = 1.;
       for (unsigned int k = 0; k < n; ++k)
-        scale = std::max(scale,
-                         std::sqrt(std::pow(result.y[k] / a_y, 2) +
-                                   std::pow(result.z[k] / a_z, 2)));
+        {
+          const double r = std::sqrt(std::pow(result.y[k] / a_y, 2) +
+                                     std::pow(result.z[k] / a_z, 2));
+          if (r > max_scale * (1. + 1e-12))
+            {
+              std::ostringstream s;
+              s << "= '" << file << "': the fibre on line " << line_of[k]
+                << " lies " << r << " times as far out as the yarn's "
+                << "elliptical section (more than DEM/Maximum packing scale "
+                << "= " << max_scale
+                << "); the centres must be in metres, inside the "
+                   "ellipse of Yarn/Thickness and Width semi-axis";
+              Parameters::require(false, name, s.str());
+            }
+          scale = std::max(scale, r);
+        }
       result.scale = scale;
       for (unsigned int a = 0; a < n; ++a)
         for (unsigned int b = a + 1; b < n; ++b)

@@ -245,7 +245,8 @@ namespace YarnImpact
                              y.n_fibres,
                              d,
                              y.thickness_semi_axis,
-                             y.width_semi_axis)
+                             y.width_semi_axis,
+                             parameters.max_packing_scale)
            : hexagonal_packing(y.n_fibres,
                                d,
                                y.thickness_semi_axis,

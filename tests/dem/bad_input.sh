@@ -52,6 +52,7 @@ printf '0 0\n1e-5 oops\n' > "$dir/malformed.txt"
 printf '0 0\n5e-6 0\n' > "$dir/overlap.txt"
 printf '0 0\n' > "$dir/short.txt"
 printf '0 6e-6\n0 -1.2e-5\n' > "$dir/asymmetric.txt"
+printf '0 0\n1 0\n' > "$dir/far_outside.txt"
 
 expect malformed_file "line 2: expected two numbers" \
   "subsection Yarn" "set Number of fibres = 2" "end" \
@@ -65,6 +66,10 @@ expect wrong_count "holds 1 fibre centres" \
   "subsection Yarn" "set Number of fibres = 2" "end" \
   "subsection DEM" "set Fibre layout = file" \
   "set Fibre file = $dir/short.txt" "end"
+expect far_outside "the fibre on line 2 lies" \
+  "subsection Yarn" "set Number of fibres = 2" "end" \
+  "subsection DEM" "set Fibre layout = file" \
+  "set Fibre file = $dir/far_outside.txt" "end"
 expect missing_file "cannot be opened" \
   "subsection DEM" "set Fibre layout = file" \
   "set Fibre file = $dir/none.txt" "end"

@@ -48,7 +48,10 @@ namespace YarnImpact
     /**
      * Read fibre centres, one `y z` pair per line [m]; blank lines and text
      * after '#' are ignored. Checks that there are exactly @p n centres and
-     * that no two are closer than @p d.
+     * that no two are closer than @p d, and that every centre lies inside
+     * the yarn's ellipse (semi-axes @p a_y, @p a_z [m]) enlarged by
+     * @p max_scale (DEM/Maximum packing scale): a centre far outside is a
+     * units error or another yarn.
      * @throw InputError naming the file and the line on any problem
      */
     FibreCentres
@@ -56,7 +59,8 @@ namespace YarnImpact
                     const unsigned int n,
                     const double d,
                     const double a_y,
-                    const double a_z);
+                    const double a_z,
+                    const double max_scale);
 
     /** Smallest distance between two centres (infinity for fewer than two),
      * for the checks [m]. */
