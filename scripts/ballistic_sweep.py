@@ -171,7 +171,11 @@ def plot(args, table, critical, smith):
     for key, label, file in quantities:
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
         for model, rows in table.items():
-            rows = sorted((r for r in rows if r[key] is not None),
+            # A bisection run that stopped at t_r + 1 us without a cut has
+            # no residual velocity: it is left out of the plots.
+            rows = sorted((r for r in rows if r[key] is not None and
+                           (r["cut_through"] is not None or
+                            r["end"] >= args.end_time * 1e6 - 1e-3)),
                           key=lambda r: r["velocity"])
             ax.plot([r["velocity"] for r in rows], [r[key] for r in rows],
                     styles[model], label=LABELS[model], ms=4)
