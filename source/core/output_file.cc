@@ -9,7 +9,6 @@
 #include <cstring>
 #include <fcntl.h>
 #include <unistd.h>
-#include <vector>
 
 namespace YarnImpact
 {
@@ -166,10 +165,16 @@ namespace YarnImpact
         if (error.empty())
           error = "an output file could not be written.";
       }
-    const std::vector<std::string> errors =
-      dealii::Utilities::MPI::all_gather(communicator, error);
-    for (const auto &e : errors)
-      if (!e.empty())
-        throw OutputError(e);
+    // One small reduction when all went well (every history row passes
+    // here); the message travels only on failure.
+    const unsigned int n_ranks =
+      dealii::Utilities::MPI::n_mpi_processes(communicator);
+    const unsigned int failed_rank = dealii::Utilities::MPI::min(
+      error.empty() ? n_ranks
+                    : dealii::Utilities::MPI::this_mpi_process(communicator),
+      communicator);
+    if (failed_rank < n_ranks)
+      throw OutputError(
+        dealii::Utilities::MPI::broadcast(communicator, error, failed_rank));
   }
 } // namespace YarnImpact

@@ -393,11 +393,11 @@ namespace YarnImpact
               "FE/Cells along the axis",
               "is too small: cells longer than the projectile radius cannot "
               "resolve the contact");
-      const double cells = 12. * std::pow(4., parameters.section_refinements) *
-                           parameters.n_axial_cells *
-                           std::pow(8., parameters.global_refinements);
-      require(cells <= 5e7,
-              memory_estimate(shared, parameters).parameter,
+      // The cell count is the memory estimate's, which also names the
+      // parameter that makes it large.
+      const MemoryEstimate size = memory_estimate(shared, parameters);
+      require(size.n_elements <= 5e7,
+              size.parameter,
               "gives more than 50 million cells");
     }
 
