@@ -2,6 +2,7 @@
 #include <yarn_impact/analysis/run_summary.h>
 #include <yarn_impact/app/application.h>
 #include <yarn_impact/app/model_factory.h>
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
@@ -59,7 +60,8 @@ namespace YarnImpact
     }
 
     const char *usage =
-      "Usage: yarn-impact [--check] FILE.prm | --print-parameters | --help\n"
+      "Usage: yarn-impact [--check | --restart] FILE.prm | --print-parameters "
+      "| --help\n"
       "\n"
       "Transverse impact of a rigid cylindrical projectile on a single yarn,\n"
       "with a mesoscopic hyperelastic finite-element model and a microscopic\n"
@@ -67,6 +69,9 @@ namespace YarnImpact
       "\n"
       "  FILE.prm             run the case (also under mpirun -np N)\n"
       "  --check FILE.prm     parse and validate FILE.prm, write nothing\n"
+      "  --restart FILE.prm   continue the run of FILE.prm from its last\n"
+      "                       checkpoint in its Output/Directory (same\n"
+      "                       parameters, same number of MPI ranks)\n"
       "  --print-parameters   print every parameter with its default,\n"
       "                       unit and documentation\n"
       "  --help               this text\n";
@@ -94,6 +99,7 @@ namespace YarnImpact
              name == "comparison.csv" || name == "velocity_comparison.png" ||
              name == "wave_fronts.png" ||
              (starts("history_") && ends(".csv")) ||
+             (starts("checkpoint_") && (ends(".txt") || ends(".bin"))) ||
              (starts("elementary_") &&
               (ends(".csv") || ends(".csv.partial"))) ||
              ends(".pvd") || ends(".pvtu") || ends(".vtu") ||
@@ -204,6 +210,64 @@ namespace YarnImpact
       error = Utilities::MPI::broadcast(MPI_COMM_WORLD, error, 0);
       if (!error.empty())
         throw InputError(error);
+    }
+
+    /**
+     * Make sure a restart continues the run that wrote the checkpoints in
+     * Output/Directory: its parameters.prm must be @p resolved (the same
+     * parameters, whatever the file's layout), and at least one model
+     * must have a checkpoint there. Decided on rank 0 and broadcast;
+     * throws InputError on every rank.
+     */
+    void
+    check_restart(const AllParameters &p, const std::string &resolved)
+    {
+      const std::string &dir = p.shared.output.directory;
+      std::string error;
+      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        {
+          std::ifstream in(dir + "/parameters.prm");
+          std::ostringstream earlier;
+          earlier << in.rdbuf();
+          bool any = false;
+          for (const std::string name : {"fe", "dem"})
+            any =
+              any || std::filesystem::exists(Checkpoint::info_file(dir, name));
+          if (!in)
+            error = "--restart: Output/Directory = '" + dir +
+                    "' holds no parameters.prm of an earlier run to continue.";
+          else if (earlier.str() != resolved)
+            error = "--restart: the parameters differ from those of the run "
+                    "in Output/Directory = '" +
+                    dir +
+                    "' (its parameters.prm): a restart must continue the "
+                    "same run; start a new one without --restart.";
+          else if (!any)
+            error = "--restart: Output/Directory = '" + dir +
+                    "' holds no checkpoint (checkpoint_fe.txt or "
+                    "checkpoint_dem.txt): the run stopped before writing one; "
+                    "start it again without --restart (Output/Overwrite = "
+                    "true).";
+        }
+      error = Utilities::MPI::broadcast(MPI_COMM_WORLD, error, 0);
+      if (!error.empty())
+        throw InputError(error);
+    }
+
+    /** Remove the checkpoints of a run that has ended (rank 0): they are
+     * large, and there is nothing left to continue. */
+    void
+    remove_checkpoints(const std::string &dir)
+    {
+      namespace fs = std::filesystem;
+      std::error_code ec;
+      for (fs::directory_iterator it(dir, ec), last; !ec && it != last;
+           it.increment(ec))
+        {
+          const std::string name = it->path().filename().string();
+          if (name.compare(0, 11, "checkpoint_") == 0 && is_run_output(name))
+            fs::remove(it->path(), ec);
+        }
     }
 
     /**
@@ -344,8 +408,9 @@ namespace YarnImpact
         return 0;
       }
     const bool check_only = (args.size() == 2 && args[0] == "--check");
+    const bool restart    = (args.size() == 2 && args[0] == "--restart");
     if (!(args.size() == 1 && args[0].size() > 0 && args[0][0] != '-') &&
-        !check_only)
+        !check_only && !restart)
       {
         if (is_root)
           std::cerr << "yarn-impact: error: invalid command line (see "
@@ -370,16 +435,28 @@ namespace YarnImpact
           }
 
         const auto &output = parameters.shared.output;
-        prepare_output_directory(output, file, is_root, out);
-        collective_output(MPI_COMM_WORLD, [&] {
-          if (is_root)
-            {
-              AtomicFile resolved(output.directory + "/parameters.prm");
-              prm.print_parameters(resolved.stream(),
-                                   ParameterHandler::ShortPRM);
-              resolved.commit();
-            }
-        });
+        std::ostringstream resolved;
+        prm.print_parameters(resolved, ParameterHandler::ShortPRM);
+        if (restart)
+          {
+            if (parameters.elementary.loading != DEM::ElementaryLoading::none)
+              throw InputError("--restart: the elementary tests (Elementary "
+                               "test/Loading) write no checkpoints; run them "
+                               "again from the start.");
+            check_restart(parameters, resolved.str());
+          }
+        else
+          {
+            prepare_output_directory(output, file, is_root, out);
+            collective_output(MPI_COMM_WORLD, [&] {
+              if (is_root)
+                write_file_atomically(output.directory + "/parameters.prm",
+                                      resolved.str());
+            });
+          }
+        // From here a SIGTERM or SIGINT stops the run at its next history
+        // row with a checkpoint (exit code 6).
+        Checkpoint::install_signal_handlers();
 
         if (parameters.elementary.loading != DEM::ElementaryLoading::none)
           {
@@ -411,13 +488,19 @@ namespace YarnImpact
         double mass_per_length[2] = {0., 0.}, axial_stiffness[2] = {0., 0.};
         for (const auto type : models)
           {
+            CheckpointOptions checkpoints;
+            checkpoints.restart = restart;
+            // With both models, the FE's end state lets a restart in the
+            // DEM part compare with it.
+            checkpoints.keep_final_state = (type != models.back());
             ImpactSimulation simulation(parameters.shared,
                                         create_model(type,
                                                      parameters,
                                                      MPI_COMM_WORLD),
                                         MPI_COMM_WORLD,
                                         out,
-                                        Analysis::run_hooks(parameters.shared));
+                                        Analysis::run_hooks(parameters.shared),
+                                        checkpoints);
             try
               {
                 const RunResult result = simulation.run();
@@ -475,6 +558,8 @@ namespace YarnImpact
             write_file_atomically(output.directory + "/summary.txt",
                                   summary_text.str());
         });
+        if (is_root)
+          remove_checkpoints(output.directory);
         if (!run_errors.empty())
           throw RunError(run_errors);
         if (!passed)
@@ -502,6 +587,14 @@ namespace YarnImpact
         if (is_root)
           std::cerr << "yarn-impact: error: " << e.what() << std::endl;
         return 5;
+      }
+    catch (const Interrupted &e)
+      {
+        if (is_root)
+          std::cerr << "yarn-impact: stopped: " << e.what()
+                    << "; continue it with: yarn-impact --restart " << file
+                    << std::endl;
+        return 6;
       }
   }
 } // namespace YarnImpact

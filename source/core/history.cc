@@ -2,6 +2,7 @@
 
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 namespace YarnImpact
 {
@@ -31,9 +32,10 @@ namespace YarnImpact
             "section RMS width at impact [mm]"};
   }
 
-  History::History(const std::string &directory,
-                   const std::string &model_name,
-                   const bool is_root)
+  void
+  History::open(const std::string &directory,
+                const std::string &model_name,
+                const bool is_root)
   {
     if (!is_root)
       return;
@@ -46,12 +48,100 @@ namespace YarnImpact
     file.append(header.str());
   }
 
+  History::History(const std::string &directory,
+                   const std::string &model_name,
+                   const bool is_root)
+  {
+    open(directory, model_name, is_root);
+  }
+
+  History::History(const std::string &directory,
+                   const std::string &model_name,
+                   const bool is_root,
+                   std::vector<HistoryRow> rows)
+    : all_rows(std::move(rows))
+  {
+    open(directory, model_name, is_root);
+    if (!file.is_open())
+      return;
+    std::string text;
+    for (const auto &row : all_rows)
+      text += format(row);
+    file.append(text);
+  }
+
+  void
+  History::save(Checkpoint::Writer &out) const
+  {
+    out.tag("history");
+    out.put(static_cast<std::uint64_t>(all_rows.size()));
+    for (const auto &r : all_rows)
+      {
+        const auto &m = r.model;
+        out.put(r.time);
+        out.put(r.step);
+        out.put(r.time_step);
+        out.put(r.projectile_displacement);
+        out.put(r.projectile_velocity);
+        out.put(r.contact_force);
+        out.put(r.projectile_kinetic_energy);
+        out.put(r.external_work);
+        out.put(r.energy_error);
+        out.put(m.kinetic_energy);
+        out.put(m.elastic_energy);
+        out.put(m.contact_energy);
+        out.put(m.dissipated_energy);
+        out.put(m.max_strain);
+        out.put(m.n_failed);
+        out.put(m.cut_through);
+        out.put(r.fronts);
+      }
+  }
+
+  std::vector<HistoryRow>
+  History::load_rows(Checkpoint::Reader &in)
+  {
+    in.tag("history");
+    std::uint64_t n = 0;
+    in.get(n);
+    std::vector<HistoryRow> rows;
+    for (std::uint64_t i = 0; i < n; ++i)
+      {
+        HistoryRow r;
+        auto &m = r.model;
+        in.get(r.time);
+        in.get(r.step);
+        in.get(r.time_step);
+        in.get(r.projectile_displacement);
+        in.get(r.projectile_velocity);
+        in.get(r.contact_force);
+        in.get(r.projectile_kinetic_energy);
+        in.get(r.external_work);
+        in.get(r.energy_error);
+        in.get(m.kinetic_energy);
+        in.get(m.elastic_energy);
+        in.get(m.contact_energy);
+        in.get(m.dissipated_energy);
+        in.get(m.max_strain);
+        in.get(m.n_failed);
+        in.get(m.cut_through);
+        in.get(r.fronts);
+        rows.push_back(std::move(r));
+      }
+    return rows;
+  }
+
   void
   History::add(const HistoryRow &r)
   {
     all_rows.push_back(r);
-    if (!file.is_open())
-      return;
+    if (file.is_open())
+      file.append(format(r));
+  }
+
+  std::string
+  History::format(const HistoryRow &r)
+  {
     const auto &m = r.model;
     std::ostringstream line;
     line << std::setprecision(10);
@@ -66,6 +156,6 @@ namespace YarnImpact
          << ',' << r.fronts.spreading * 1e3 << ','
          << r.fronts.width_at_impact * 1e3 << ',' << r.fronts.plateau_strain
          << ',' << r.fronts.rms_width_at_impact * 1e3 << '\n';
-    file.append(line.str());
+    return line.str();
   }
 } // namespace YarnImpact

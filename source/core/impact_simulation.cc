@@ -1,3 +1,4 @@
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/core/projectile.h>
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <exception>
 #include <fstream>
 #include <iomanip>
@@ -26,10 +28,12 @@ namespace YarnImpact
                    std::unique_ptr<ImpactModel> model,
                    const MPI_Comm communicator,
                    std::ostream &out,
-                   RunHooks hooks)
+                   RunHooks hooks,
+                   CheckpointOptions checkpoints)
       : parameters(parameters)
       , model(std::move(model))
       , hooks(std::move(hooks))
+      , checkpoints(checkpoints)
       , communicator(communicator)
       , is_root(Utilities::MPI::this_mpi_process(communicator) == 0)
       , out(out, is_root)
@@ -56,9 +60,31 @@ namespace YarnImpact
     void
     add_history_row(const HistoryRow &row);
 
+    /** The checkpoint of everything the loop needs to go on: the clock,
+     * the projectile, the history, the snapshot list, the loop's own
+     * records and the model's state (this rank's part). */
+    std::string
+    checkpoint_state(const Schedule &schedule,
+                     const double force,
+                     const RunResult &result,
+                     const std::string &stop_reason) const;
+
+    /** Read what checkpoint_state() wrote into the same places. */
+    void
+    load_checkpoint(Checkpoint::Reader &in,
+                    Schedule &schedule,
+                    double &force,
+                    RunResult &result,
+                    std::string &stop_reason);
+
     const Parameters::Shared &parameters;
     std::unique_ptr<ImpactModel> model;
     RunHooks hooks;
+    CheckpointOptions checkpoints;
+    /** The last checkpoint written or read (generation 0: none). */
+    Checkpoint::Info checkpoint_info;
+    /** Simulated time of the next periodic checkpoint [s]. */
+    double next_checkpoint = 0.;
     MPI_Comm communicator;
     bool is_root;
     ConditionalOStream out;
@@ -123,6 +149,94 @@ namespace YarnImpact
   }
 
 
+  std::string
+  ImpactSimulation::Implementation::checkpoint_state(
+    const Schedule &schedule,
+    const double force,
+    const RunResult &result,
+    const std::string &stop_reason) const
+  {
+    Checkpoint::Writer w;
+    w.tag("yarn-impact checkpoint");
+    w.put(model->name());
+    schedule.save(w);
+    projectile.save(w);
+    history->save(w);
+    w.tag("loop");
+    w.put(static_cast<std::uint64_t>(snapshots.size()));
+    for (const auto &s : snapshots)
+      {
+        w.put(s.first);
+        w.put(s.second);
+      }
+    w.put(initial_energy);
+    w.put(force);
+    w.put(next_checkpoint);
+    w.put(result.max_energy_error);
+    w.put(result.first_failure_time);
+    w.put(result.cut_through_time);
+    w.put(stop_reason);
+    w.tag(model->name());
+    model->save_state(w);
+    w.tag("end");
+    return w.contents();
+  }
+
+
+  void
+  ImpactSimulation::Implementation::load_checkpoint(Checkpoint::Reader &in,
+                                                    Schedule &schedule,
+                                                    double &force,
+                                                    RunResult &result,
+                                                    std::string &stop_reason)
+  {
+    in.tag("yarn-impact checkpoint");
+    std::string name;
+    in.get(name);
+    schedule.load(in);
+    projectile.load(in);
+    auto rows = History::load_rows(in);
+    in.tag("loop");
+    std::uint64_t n_snapshots = 0;
+    in.get(n_snapshots);
+    snapshots.resize(n_snapshots);
+    for (auto &s : snapshots)
+      {
+        in.get(s.first);
+        in.get(s.second);
+      }
+    in.get(initial_energy);
+    in.get(force);
+    in.get(next_checkpoint);
+    in.get(result.max_energy_error);
+    in.get(result.first_failure_time);
+    in.get(result.cut_through_time);
+    in.get(stop_reason);
+    in.tag(model->name());
+    model->load_state(in);
+    in.tag("end");
+    in.expect_end();
+    // The history as the uninterrupted run had it at the checkpoint: rows
+    // written after it by the interrupted run are dropped.
+    collective_output(communicator, [&] {
+      history = std::make_unique<History>(parameters.output.directory,
+                                          model->name(),
+                                          is_root,
+                                          std::move(rows));
+    });
+    if (!snapshots.empty())
+      collective_output(communicator, [&] {
+        if (is_root)
+          {
+            AtomicFile pvd(parameters.output.directory + "/" + model->name() +
+                           ".pvd");
+            DataOutBase::write_pvd_record(pvd.stream(), snapshots);
+            pvd.commit();
+          }
+      });
+  }
+
+
   void
   ImpactSimulation::Implementation::add_history_row(const HistoryRow &row)
   {
@@ -184,9 +298,14 @@ namespace YarnImpact
       projectile.place_on(model->yarn_top());
     }
     const std::string name = model->name();
-    collective_output(communicator, [&] {
-      history = std::make_unique<History>(p.output.directory, name, is_root);
-    });
+    const std::string &dir = p.output.directory;
+    if (checkpoints.restart)
+      checkpoint_info = Checkpoint::read_info(dir, name, communicator);
+    const bool restarted = checkpoint_info.generation > 0;
+    if (!restarted)
+      collective_output(communicator, [&] {
+        history = std::make_unique<History>(dir, name, is_root);
+      });
 
     Schedule schedule(p.time, p.output);
     schedule.set_critical_step(model->stable_time_step());
@@ -221,26 +340,69 @@ namespace YarnImpact
           hooks.report_setup(*model, is_root ? out.get_stream() : setup_sink);
       }
 
-    double force   = model->compute_forces(projectile, schedule.time_step());
-    initial_energy = 0.;
-    {
-      const auto r0  = make_row(0., 0, schedule.time_step(), force);
-      initial_energy = r0.projectile_kinetic_energy + r0.model.kinetic_energy +
-                       r0.model.elastic_energy + r0.model.contact_energy;
-    }
-    add_history_row(make_row(0., 0, schedule.time_step(), force));
-    if (schedule.snapshots_on())
+    RunResult result;
+    std::string stop_reason = "end time reached";
+    double force            = 0.;
+    if (restarted)
       {
-        TimerOutput::Scope scope(timer, "output");
-        write_snapshot(0.);
+        TimerOutput::Scope scope(timer, "checkpoint");
+        Checkpoint::Reader in(Checkpoint::rank_file(
+          dir,
+          name,
+          checkpoint_info.slot,
+          Utilities::MPI::this_mpi_process(communicator)));
+        load_checkpoint(in, schedule, force, result, stop_reason);
+        if (!testing)
+          out << "[" << name << "] restarted from its checkpoint at t = "
+              << schedule.time() * 1e6 << " us, step " << schedule.step()
+              << (checkpoint_info.completed ? " (its run had finished)" : "")
+              << '\n';
+      }
+    else
+      {
+        force = model->compute_forces(projectile, schedule.time_step());
+        initial_energy = 0.;
+        {
+          const auto r0  = make_row(0., 0, schedule.time_step(), force);
+          initial_energy = r0.projectile_kinetic_energy +
+                           r0.model.kinetic_energy + r0.model.elastic_energy +
+                           r0.model.contact_energy;
+        }
+        add_history_row(make_row(0., 0, schedule.time_step(), force));
+        if (schedule.snapshots_on())
+          {
+            TimerOutput::Scope scope(timer, "output");
+            write_snapshot(0.);
+          }
+        next_checkpoint = p.output.checkpoint_interval;
       }
 
-    RunResult result;
     result.model_name      = name;
     result.mass_per_length = model->mass() / p.yarn.length;
     result.axial_stiffness = axial.axial_stiffness();
     double last_progress   = 0.;
+    double last_checkpoint = 0.;
     const double eps_t     = schedule.epsilon();
+    const double t_start   = schedule.time();
+    const bool finished    = restarted && checkpoint_info.completed;
+    // What a checkpoint at a history row writes, and when it is due.
+    const auto write_checkpoint = [&](const bool completed) {
+      TimerOutput::Scope scope(timer, "checkpoint");
+      const double t = schedule.time();
+      if (p.output.checkpoint_interval > 0.)
+        while (next_checkpoint <= t + eps_t)
+          next_checkpoint += p.output.checkpoint_interval;
+      checkpoint_info = Checkpoint::write(
+        dir,
+        name,
+        communicator,
+        checkpoint_info,
+        t,
+        schedule.step(),
+        completed,
+        checkpoint_state(schedule, force, result, stop_reason));
+      last_checkpoint = wall_timer.wall_time();
+    };
 
     const auto fail = [&](const std::string &cause) {
       std::ostringstream s;
@@ -252,8 +414,7 @@ namespace YarnImpact
       throw RunError(s.str());
     };
 
-    std::string stop_reason = "end time reached";
-    while (schedule.running())
+    while (!finished && schedule.running())
       {
         if (schedule.time_step_update_due())
           {
@@ -327,13 +488,38 @@ namespace YarnImpact
                 stop_reason = "the projectile stopped";
                 break;
               }
+
+            // Checkpoints: at their interval, and when a signal asks the
+            // run to stop. The signal may reach the ranks at different
+            // steps: they agree here, at the same row.
+            Checkpoint::internal::inject_signal();
+            int due[2] = {Checkpoint::signal_received(),
+                          is_root && p.output.checkpoint_wall_interval > 0. &&
+                            wall_timer.wall_time() - last_checkpoint >=
+                              p.output.checkpoint_wall_interval};
+            MPI_Allreduce(MPI_IN_PLACE, due, 2, MPI_INT, MPI_MAX, communicator);
+            if (due[0] != 0 || due[1] != 0 ||
+                (p.output.checkpoint_interval > 0. &&
+                 t >= next_checkpoint - eps_t))
+              write_checkpoint(false);
+            if (due[0] != 0)
+              {
+                std::ostringstream s;
+                s << "the " << name << " run was stopped by "
+                  << (due[0] == SIGINT ? "SIGINT" : "SIGTERM")
+                  << " at t = " << t * 1e6 << " us (step " << schedule.step()
+                  << "); its state is saved in "
+                  << Checkpoint::info_file(dir, name);
+                throw Interrupted(s.str());
+              }
           }
 
         if (verbose && is_root &&
             wall_timer.wall_time() - last_progress > p.output.progress_interval)
           {
-            last_progress    = wall_timer.wall_time();
-            const double eta = last_progress * (p.time.end_time - t) / t;
+            last_progress = wall_timer.wall_time();
+            const double eta =
+              last_progress * (p.time.end_time - t) / (t - t_start);
             out << "[" << name << "] t = " << std::fixed << std::setprecision(3)
                 << t * 1e6 << " us, step " << schedule.step() << ", dt "
                 << std::defaultfloat << std::setprecision(4) << h * 1e9
@@ -343,6 +529,9 @@ namespace YarnImpact
                 << std::endl;
           }
       }
+
+    if (checkpoints.keep_final_state && !finished)
+      write_checkpoint(true);
 
     result.model_remarks  = model->remarks();
     result.n_steps        = schedule.step();
@@ -360,12 +549,14 @@ namespace YarnImpact
                                      std::unique_ptr<ImpactModel> model,
                                      const MPI_Comm communicator,
                                      std::ostream &out,
-                                     RunHooks hooks)
+                                     RunHooks hooks,
+                                     CheckpointOptions checkpoints)
     : impl(std::make_unique<Implementation>(parameters,
                                             std::move(model),
                                             communicator,
                                             out,
-                                            std::move(hooks)))
+                                            std::move(hooks),
+                                            checkpoints))
   {}
 
   ImpactSimulation::~ImpactSimulation() = default;

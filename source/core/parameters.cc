@@ -275,6 +275,20 @@ namespace YarnImpact
                         Patterns::Double(),
                         "Simulated time between two rows of the history CSV "
                         "[s].");
+      prm.declare_entry(
+        "Checkpoint interval",
+        "0",
+        Patterns::Double(),
+        "Simulated time between two checkpoints, written at the first "
+        "history row after each multiple of it; 0 writes none (a SIGTERM or "
+        "SIGINT still writes one before the run stops). A run continues from "
+        "its last checkpoint with yarn-impact --restart FILE.prm [s].");
+      prm.declare_entry(
+        "Checkpoint wall-clock interval",
+        "0",
+        Patterns::Double(),
+        "Wall-clock time between two checkpoints (at the first history row "
+        "after it); 0 writes none [s].");
       prm.declare_entry("Progress interval",
                         "2",
                         Patterns::Double(),
@@ -303,6 +317,15 @@ namespace YarnImpact
       history_interval = get_positive_double(prm, "Output", "History interval");
       progress_interval =
         get_positive_double(prm, "Output", "Progress interval");
+      checkpoint_interval = prm.get_double("Checkpoint interval");
+      require(checkpoint_interval >= 0.,
+              "Output/Checkpoint interval",
+              "must not be negative");
+      checkpoint_wall_interval =
+        prm.get_double("Checkpoint wall-clock interval");
+      require(checkpoint_wall_interval >= 0.,
+              "Output/Checkpoint wall-clock interval",
+              "must not be negative");
       const std::string v = prm.get("Verbosity");
       verbosity           = (v == "normal"  ? Verbosity::normal
                              : v == "quiet" ? Verbosity::quiet

@@ -14,6 +14,26 @@ namespace YarnImpact
   {}
 
   void
+  Projectile::save(Checkpoint::Writer &out) const
+  {
+    out.tag("projectile");
+    out.put(y0);
+    out.put(y);
+    out.put(v);
+    out.put(work);
+  }
+
+  void
+  Projectile::load(Checkpoint::Reader &in)
+  {
+    in.tag("projectile");
+    in.get(y0);
+    in.get(y);
+    in.get(v);
+    in.get(work);
+  }
+
+  void
   Projectile::kick(const double dt, const double force)
   {
     if (is_prescribed)

@@ -136,6 +136,32 @@ namespace YarnImpact
         std::string
         remarks() const override;
 
+        void
+        save_state(Checkpoint::Writer &out) const override
+        {
+          out.tag("dem model");
+          out.put(projectile_speed);
+          out.put(projectile_contact);
+          out.put(dissipated_local);
+          decomposition.save(out);
+          spheres.save(out);
+          lists.save(out);
+          list_check.save(out);
+        }
+
+        void
+        load_state(Checkpoint::Reader &in) override
+        {
+          in.tag("dem model");
+          in.get(projectile_speed);
+          in.get(projectile_contact);
+          in.get(dissipated_local);
+          decomposition.load(in);
+          spheres.load(in);
+          lists.load(in);
+          list_check.load(in);
+        }
+
         /** Counters for the benchmark (collective). */
         std::string
         statistics() const

@@ -112,6 +112,16 @@ namespace YarnImpact
                      const unsigned int index,
                      const double time) const override;
 
+      /** Displacements, velocities and forces of the owned dofs, the cells'
+       * failure state and strains, the energies and the contact's state. */
+      void
+      save_state(Checkpoint::Writer &out) const override;
+
+      /** Read what save_state() wrote (collective: refreshes the ghost
+       * values). */
+      void
+      load_state(Checkpoint::Reader &in) override;
+
       /** Number of cells of the modelled part. */
       unsigned long
       n_elements() const override

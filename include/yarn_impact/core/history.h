@@ -1,6 +1,7 @@
 #ifndef yarn_impact_core_history_h
 #define yarn_impact_core_history_h
 
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/observables.h>
 #include <yarn_impact/core/output_file.h>
 
@@ -53,6 +54,15 @@ namespace YarnImpact
             const std::string &model_name,
             const bool is_root);
 
+    /** Open the history of a restarted run:
+     * `<directory>/history_<model_name>.csv` written anew on rank 0 with the
+     * header and the rows @p rows of the checkpoint, as the uninterrupted run
+     * had written them. */
+    History(const std::string &directory,
+            const std::string &model_name,
+            const bool is_root,
+            std::vector<HistoryRow> rows);
+
     /** Append a row, written at once and whole (a crashed run keeps what it
      * had; a failed write throws an OutputError and leaves the file ending
      * with its last whole row). */
@@ -66,11 +76,28 @@ namespace YarnImpact
       return all_rows;
     }
 
+    /** Write every row kept (profiles excepted) to a checkpoint. */
+    void
+    save(Checkpoint::Writer &out) const;
+
+    /** The rows of a checkpoint, for the constructor of a restarted run. */
+    static std::vector<HistoryRow>
+    load_rows(Checkpoint::Reader &in);
+
     /** The CSV column names, in order. */
     static std::vector<std::string>
     column_names();
 
   private:
+    /** The CSV line of @p row. */
+    static std::string
+    format(const HistoryRow &row);
+    /** Create the file and write the header (rank 0). */
+    void
+    open(const std::string &directory,
+         const std::string &model_name,
+         const bool is_root);
+
     AppendFile file;
     std::vector<HistoryRow> all_rows;
   };

@@ -1,6 +1,7 @@
 #ifndef yarn_impact_core_impact_model_h
 #define yarn_impact_core_impact_model_h
 
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/observables.h>
 
 #include <functional>
@@ -68,9 +69,9 @@ namespace YarnImpact
    * - compute_forces() follows every drift() and leaves what the next
    *   kick() needs.
    *
-   * observables(), write_snapshot() and stable_time_step() may be called
-   * between steps (after the second kick), never inside one. All functions
-   * are collective over the model's MPI communicator.
+   * observables(), write_snapshot(), stable_time_step() and save_state()
+   * may be called between steps (after the second kick), never inside one. All
+   * functions are collective over the model's MPI communicator.
    */
   class ImpactModel
   {
@@ -150,6 +151,21 @@ namespace YarnImpact
      * for throughput figures. */
     virtual unsigned long
     n_elements() const = 0;
+
+    /**
+     * Write this rank's whole state between two steps to a checkpoint:
+     * everything that the next steps, observables(), write_snapshot() and
+     * remarks() read and that setup() does not rebuild identically, so
+     * that a model set up anew and given load_state() makes bitwise the
+     * steps this one would make.
+     */
+    virtual void
+    save_state(Checkpoint::Writer &out) const = 0;
+
+    /** Read what save_state() wrote, after setup() (collective where the
+     * model needs it, e.g. to refresh ghost values). */
+    virtual void
+    load_state(Checkpoint::Reader &in) = 0;
 
     /** Model-specific remarks for the run summary (e.g. how the DEM's MPI
      * ghost layers grew); empty by default. Must be identical on all

@@ -26,6 +26,29 @@ namespace YarnImpact
     using std::runtime_error::runtime_error;
   };
 
+  /**
+   * The run was asked to stop by a signal (SIGTERM, SIGINT) and stopped
+   * at a history row after writing a checkpoint; the message says when
+   * and where. The program exits with code 6.
+   */
+  class Interrupted : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /** How a run starts and keeps checkpoints (Checkpoint namespace). */
+  struct CheckpointOptions
+  {
+    /** Continue from the model's checkpoint in Output/Directory, if it has
+     * one (yarn-impact --restart). */
+    bool restart = false;
+    /** Write a checkpoint of the finished model at its end (with
+     * Model = both, the FE part, so that a restart in the DEM part has
+     * its history for the comparison). */
+    bool keep_final_state = false;
+  };
+
   /** What the time loop knows of a finished run (analysis adds the
    * verification window and the checks: analysis/run_summary.h). */
   struct RunResult
@@ -90,18 +113,25 @@ namespace YarnImpact
      * @param communicator the model's MPI communicator
      * @param out screen stream (written on rank 0 only)
      * @param hooks what the layer above adds (fronts, set-up report)
+     * @param checkpoints restart and final-state options
      */
     ImpactSimulation(const Parameters::Shared &parameters,
                      std::unique_ptr<ImpactModel> model,
                      const MPI_Comm communicator,
                      std::ostream &out,
-                     RunHooks hooks = {});
+                     RunHooks hooks                = {},
+                     CheckpointOptions checkpoints = {});
 
     ~ImpactSimulation();
 
     /**
      * Set the model up and run to the end time. Writes the history, the
      * snapshots and their PVD record into the output directory.
+     * With Output/Checkpoint interval or Output/Checkpoint wall-clock
+     * interval, writes checkpoints at history rows; after a SIGTERM or
+     * SIGINT (Checkpoint::install_signal_handlers()), writes one at the
+     * next history row and throws Interrupted. With
+     * CheckpointOptions::restart, continues from the model's checkpoint.
      * @throws RunError on a numerical blow-up (after keeping the last good
      * snapshot and the history up to it)
      */

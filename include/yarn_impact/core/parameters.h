@@ -156,6 +156,11 @@ namespace YarnImpact
       double history_interval = 0.1e-6;
       /** Wall-clock time between progress lines [s]. */
       double progress_interval = 2.;
+      /** Simulated time between checkpoints [s]; 0: none (a signal still
+       * writes one). */
+      double checkpoint_interval = 0.;
+      /** Wall-clock time between checkpoints [s]; 0: none. */
+      double checkpoint_wall_interval = 0.;
       /** Screen verbosity. */
       Verbosity verbosity = Verbosity::normal;
 

@@ -1,6 +1,7 @@
 #ifndef yarn_impact_core_projectile_h
 #define yarn_impact_core_projectile_h
 
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/parameters.h>
 
 namespace YarnImpact
@@ -118,6 +119,14 @@ namespace YarnImpact
     {
       return work;
     }
+
+    /** Write the motion (position, velocity, work) to a checkpoint. */
+    void
+    save(Checkpoint::Writer &out) const;
+
+    /** Read what save() wrote. */
+    void
+    load(Checkpoint::Reader &in);
 
   private:
     double m;

@@ -1,6 +1,7 @@
 #ifndef yarn_impact_core_time_stepping_h
 #define yarn_impact_core_time_stepping_h
 
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/parameters.h>
 
 #include <algorithm>
@@ -177,6 +178,31 @@ namespace YarnImpact
     {
       while (next_snapshot <= t + eps)
         next_snapshot += output.snapshot_interval;
+    }
+
+    /** Write the clock (time, step, time step, next output times) to a
+     * checkpoint. */
+    void
+    save(Checkpoint::Writer &out) const
+    {
+      out.tag("schedule");
+      out.put(t);
+      out.put(n_steps);
+      out.put(dt);
+      out.put(next_history);
+      out.put(next_snapshot);
+    }
+
+    /** Read what save() wrote. */
+    void
+    load(Checkpoint::Reader &in)
+    {
+      in.tag("schedule");
+      in.get(t);
+      in.get(n_steps);
+      in.get(dt);
+      in.get(next_history);
+      in.get(next_snapshot);
     }
 
   private:

@@ -1,6 +1,7 @@
 #ifndef yarn_impact_dem_decomposition_h
 #define yarn_impact_dem_decomposition_h
 
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/dem/fibre_chains.h>
 #include <yarn_impact/dem/parameters.h>
 
@@ -121,6 +122,14 @@ namespace YarnImpact
         std::vector<unsigned int> ghost_lo, ghost_hi;
         /** How often the ghost layers grew. */
         unsigned long n_ghost_growths = 0;
+
+        /** Write the ghost layers (what moves during a run) to a
+         * checkpoint (dem/checkpoint.cc). */
+        void
+        save(Checkpoint::Writer &out) const;
+        /** Read what save() wrote; refuses another slab layout. */
+        void
+        load(Checkpoint::Reader &in);
 
       private:
         /** Set the active range of this rank from ghost_lo/ghost_hi. */

@@ -1,6 +1,7 @@
 #ifndef yarn_impact_dem_list_check_h
 #define yarn_impact_dem_list_check_h
 
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/dem/decomposition.h>
 #include <yarn_impact/dem/fibre_chains.h>
 #include <yarn_impact/dem/neighbour_lists.h>
@@ -56,6 +57,21 @@ namespace YarnImpact
         /** Contacts (pair-steps, weighted like the energies) and mirror
          * contacts seen by check() [-]. */
         double checked_contacts = 0., checked_mirror_contacts = 0.;
+
+        /** Write the counters to a checkpoint. */
+        void
+        save(Checkpoint::Writer &out) const
+        {
+          out.put(checked_contacts);
+          out.put(checked_mirror_contacts);
+        }
+        /** Read what save() wrote. */
+        void
+        load(Checkpoint::Reader &in)
+        {
+          in.get(checked_contacts);
+          in.get(checked_mirror_contacts);
+        }
 
       private:
         /** Sort the spheres in check_order along x and call @p f(p, q) for

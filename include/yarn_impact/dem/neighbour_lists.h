@@ -1,6 +1,7 @@
 #ifndef yarn_impact_dem_neighbour_lists_h
 #define yarn_impact_dem_neighbour_lists_h
 
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/dem/decomposition.h>
 #include <yarn_impact/dem/fibre_chains.h>
 #include <yarn_impact/dem/parameters.h>
@@ -205,6 +206,15 @@ namespace YarnImpact
 
         /** The blocks of the rank (a block taken over by the one before it
          * is left empty). */
+        /** Write the blocks (pairs, tangential histories, build positions
+         * and criteria) and the counters to a checkpoint: the next steps
+         * then visit the pairs in the same order (dem/checkpoint.cc). */
+        void
+        save(Checkpoint::Writer &out) const;
+        /** Read what save() wrote. */
+        void
+        load(Checkpoint::Reader &in);
+
         std::vector<ListBlock> blocks;
         /** Block of each storage station. */
         std::vector<unsigned int> station_block;

@@ -1,6 +1,8 @@
 #ifndef yarn_impact_dem_spheres_h
 #define yarn_impact_dem_spheres_h
 
+#include <yarn_impact/core/checkpoint.h>
+
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +39,14 @@ namespace YarnImpact
         bool forces_consumed = true;
         /** Force evaluations so far. */
         std::uint64_t step_count = 0;
+
+        /** Write everything above to a checkpoint (dem/checkpoint.cc). */
+        void
+        save(Checkpoint::Writer &out) const;
+        /** Read what save() wrote; the arrays keep the sizes the set-up
+         * gave them. */
+        void
+        load(Checkpoint::Reader &in);
       };
 
 

@@ -1,6 +1,7 @@
 #ifndef yarn_impact_fe_contact_h
 #define yarn_impact_fe_contact_h
 
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/projectile.h>
 #include <yarn_impact/fe/parameters.h>
 
@@ -72,6 +73,20 @@ namespace YarnImpact
       energy() const
       {
         return penalty_energy;
+      }
+
+      /** Write the contact's state (its penalty energy) to a checkpoint. */
+      void
+      save(Checkpoint::Writer &out) const
+      {
+        out.put(penalty_energy);
+      }
+
+      /** Read what save() wrote. */
+      void
+      load(Checkpoint::Reader &in)
+      {
+        in.get(penalty_energy);
       }
 
     private:
