@@ -17,9 +17,23 @@ namespace YarnImpact
   namespace DEM
   {
     /** The periodic yarn segment of the DEM elementary tests
-     * (doc/identification.md section 2); used by elementary_test.cc. */
+     * (doc/identification.md section 2); used by elementary_test.cc. The
+     * segment's members are defined in periodic_segment.cc (set-up and
+     * step), periodic_segment_lists.cc, periodic_segment_forces.cc and
+     * periodic_segment_measures.cc. */
     namespace internal
     {
+      /** The separation @p dx [m] along the periodic axis of length @p L
+       * [m] taken to the nearest image; |dx| < 1.5 L here (the same result
+       * as dx - L round(dx/L), without the call). Used by the lists, the
+       * forces and the measures of the segment alike. */
+      inline double
+      nearest_image(const double dx, const double L)
+      {
+        return dx > 0.5 * L ? dx - L : (dx < -0.5 * L ? dx + L : dx);
+      }
+
+
       /** A rigid wall normal to y or z: a plate (y) or a side wall (z). */
       struct Wall
       {
