@@ -70,8 +70,9 @@ namespace YarnImpact
         // The impact model's laws (doc/dem.md sections 2 and 3); the walls have
         // the projectile's normal law and no friction, so that they do not
         // hold the section back.
-        fibre_law    = fibre_contact_law(dem, truss_k, mass);
-        wall_law     = projectile_contact_law(dem, truss_k, mass);
+        fibre_law = fibre_contact_law(dem, truss_k, mass);
+        wall_law  = Contact::CundallStrackLaw(
+          projectile_contact_constants(dem, truss_k, mass));
         wall_law.k_t = 0.;
         wall_law.mu  = 0.;
 

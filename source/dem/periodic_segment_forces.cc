@@ -92,7 +92,14 @@ namespace YarnImpact
                                       v[3 * i + 1] - v[3 * j + 1],
                                       v[3 * i + 2] - v[3 * j + 2]};
                 double f[3], diss = 0.;
-                fibre_law.force(d - dist, nv, vr, dt, xi, f, diss);
+                Contact::contact_force(fibre_law,
+                                       d - dist,
+                                       nv,
+                                       vr,
+                                       dt,
+                                       xi,
+                                       f,
+                                       diss);
                 F[3 * i] += f[0];
                 F[3 * i + 1] += f[1];
                 F[3 * i + 2] += f[2];
@@ -128,7 +135,14 @@ namespace YarnImpact
                 double vr[3] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
                 vr[c] -= wall.velocity;
                 double xi[3] = {0., 0., 0.}, f[3], diss = 0.;
-                wall_law.force(delta, nv, vr, dt, xi, f, diss);
+                Contact::contact_force(wall_law,
+                                       delta,
+                                       nv,
+                                       vr,
+                                       dt,
+                                       xi,
+                                       f,
+                                       diss);
                 wall.load -= wall.side * f[c];
                 ++wall.n_in;
                 wall_virial[c - 1] += x[3 * i + c] * f[c];

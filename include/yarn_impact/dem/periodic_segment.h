@@ -1,9 +1,11 @@
 #ifndef yarn_impact_dem_periodic_segment_h
 #define yarn_impact_dem_periodic_segment_h
 
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/elementary_test.h>
+#include <yarn_impact/dem/parameters.h>
+#include <yarn_impact/dem/truss.h>
 #include <yarn_impact/fe/constitutive_law.h>
 
 #include <mpi.h>
@@ -129,7 +131,12 @@ namespace YarnImpact
         double V0 = 0.;
         /** Segment length at rest and now [m]. */
         double Lx0 = 0., Lx = 0.;
-        ContactLaw fibre_law, wall_law;
+        /** The impact model's fibre-fibre law. */
+        FibreContactLaw fibre_law;
+        /** The walls' law: the projectile's normal constants on the
+         * Cundall-Strack law without friction, whatever
+         * `Projectile contact law` says. */
+        Contact::CundallStrackLaw wall_law;
         unsigned int f_begin = 0, f_end = 0;
         std::size_t i_begin = 0, i_end = 0;
 
