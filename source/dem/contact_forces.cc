@@ -14,7 +14,7 @@ namespace YarnImpact
     {
       void
       fibre_contact_forces(std::vector<ListBlock> &blocks,
-                           const ContactLaw &law,
+                           const FibreContactLaw &law,
                            const double d,
                            const Decomposition &decomposition,
                            const double *__restrict x,
@@ -92,7 +92,7 @@ namespace YarnImpact
 
       void
       mirror_contact_forces(std::vector<ListBlock> &blocks,
-                            const ContactLaw &law,
+                            const FibreContactLaw &law,
                             const double d,
                             const Decomposition &decomposition,
                             const double *__restrict x,

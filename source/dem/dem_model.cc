@@ -5,9 +5,9 @@
 // maps or virtual calls.
 #pragma GCC optimize("O3")
 
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/projectile.h>
-#include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/decomposition.h>
 #include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/dem/fibre_chains.h>
@@ -187,7 +187,11 @@ namespace YarnImpact
         Spheres spheres;
         NeighbourLists lists;
         ListCheck list_check;
-        const ContactLaw fibre_law, projectile_law;
+        const FibreContactLaw fibre_law;
+        /** The projectile's contact law (`Projectile contact law`) and its
+         * constants. */
+        const Contact::LawType projectile_law;
+        const Contact::ContactConstants projectile_constants;
         ObservablesMeter meter;
         const double critical_step;
         /** Projectile speed at the last set-up or force evaluation [m/s]. */
@@ -213,14 +217,17 @@ namespace YarnImpact
         , list_check(prm, chains, decomposition, spheres.pos)
         // Contact laws (doc/dem.md section 2).
         , fibre_law(fibre_contact_law(prm, chains.truss_k, chains.sphere_mass))
-        , projectile_law(
-            projectile_contact_law(prm, chains.truss_k, chains.sphere_mass))
+        , projectile_law(prm.projectile_contact_law)
+        , projectile_constants(projectile_contact_constants(prm,
+                                                            chains.truss_k,
+                                                            chains.sphere_mass))
         , meter(chains,
                 decomposition,
                 spheres,
                 lists,
                 fibre_law,
-                projectile_law)
+                projectile_law,
+                projectile_constants)
         // Stable step (doc/theory.md 3.2): Gershgorin bound of a sphere with
         // two trusses, `coordination` fibre contacts and the projectile,
         // reduced for the contact damping.
@@ -297,7 +304,8 @@ namespace YarnImpact
                 << " spheres on " << decomposition.n_ranks << " rank(s)\n"
                 << "[dem] sphere mass " << chains.sphere_mass << " kg, truss "
                 << "stiffness " << chains.truss_k << " N/m, contact stiffness "
-                << fibre_law.k_n << " N/m (projectile " << projectile_law.k_n
+                << fibre_law.k_n << " N/m (projectile "
+                << projectile_constants.stiffness
                 << " N/m), rank 0 pairs listed " << n_pairs
                 << ", initial projectile energy " << E0 * 1e3 << " mJ\n";
           }
@@ -387,6 +395,7 @@ namespace YarnImpact
                               dissipated);
         double reaction = projectile_contact_forces(projectile,
                                                     projectile_law,
+                                                    projectile_constants,
                                                     chains,
                                                     decomposition,
                                                     spheres,

@@ -2,10 +2,10 @@
 // fibres, packing and contact laws) under a homogeneous deformation, with
 // its homogenised stress. The theory, the boundary conditions and the
 // checks are in doc/identification.md.
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
-#include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/elementary_test.h>
 #include <yarn_impact/dem/periodic_segment.h>
 #include <yarn_impact/fe/constitutive_law.h>

@@ -25,18 +25,21 @@ namespace YarnImpact
       }
 
 
-      ObservablesMeter::ObservablesMeter(const FibreChains &chains,
-                                         const Decomposition &decomposition,
-                                         const Spheres &spheres,
-                                         const NeighbourLists &lists,
-                                         const ContactLaw &fibre_law,
-                                         const ContactLaw &projectile_law)
+      ObservablesMeter::ObservablesMeter(
+        const FibreChains &chains,
+        const Decomposition &decomposition,
+        const Spheres &spheres,
+        const NeighbourLists &lists,
+        const FibreContactLaw &fibre_law,
+        const Contact::LawType projectile_law,
+        const Contact::ContactConstants &projectile_constants)
         : chains(chains)
         , decomposition(decomposition)
         , spheres(spheres)
         , lists(lists)
         , fibre_law(fibre_law)
         , projectile_law(projectile_law)
+        , projectile_constants(projectile_constants)
       {}
 
 
@@ -195,17 +198,22 @@ namespace YarnImpact
                 }
           }
         // Projectile contacts of the last force evaluation (the positions
-        // have not moved since).
-        for (std::size_t i = decomposition.own_b; i < decomposition.own_e; ++i)
-          if (proj_step[i] == step_count && step_count > 0)
-            {
-              const unsigned int s = decomposition.station_of(i), f = i % nf;
-              const double ex = pos[3 * i], ey = pos[3 * i + 1] - contact_at.yc;
-              const double delta =
-                std::max(0., contact_at.Rr - std::sqrt(ex * ex + ey * ey));
-              contact +=
-                fw[f] * sw[s] * projectile_law.energy(delta, &xi_p[3 * i]);
-            }
+        // have not moved since), by the law of the forces.
+        Contact::with_contact_law(projectile_law, [&](auto tag) {
+          using Law = typename decltype(tag)::type;
+          const Law law(projectile_constants);
+          for (std::size_t i = decomposition.own_b; i < decomposition.own_e;
+               ++i)
+            if (proj_step[i] == step_count && step_count > 0)
+              {
+                const unsigned int s = decomposition.station_of(i), f = i % nf;
+                const double ex = pos[3 * i],
+                             ey = pos[3 * i + 1] - contact_at.yc;
+                const double delta =
+                  std::max(0., contact_at.Rr - std::sqrt(ex * ex + ey * ey));
+                contact += fw[f] * sw[s] * law.energy(delta, &xi_p[3 * i]);
+              }
+        });
 
         double sums[5] = {kinetic, elastic, contact, dissipated, failed};
         if (n_ranks > 1)

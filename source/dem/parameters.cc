@@ -78,6 +78,15 @@ namespace YarnImpact
                         Patterns::Double(),
                         "Coulomb friction coefficient between the projectile "
                         "and the fibres [-].");
+      prm.declare_entry("Projectile contact law",
+                        "Cundall-Strack",
+                        Patterns::Selection(Contact::law_selection()),
+                        "Law of the projectile-fibre contacts "
+                        "(doc/architecture.md section 3): Cundall-Strack "
+                        "(spring-dashpot, tangential spring, Coulomb's "
+                        "limit; the fibre-fibre law) or Penalty-Coulomb "
+                        "(damping that never pulls, explicit Coulomb "
+                        "friction on the slip velocity; the FE's law).");
       prm.declare_entry("Skin",
                         "4e-6",
                         Patterns::Double(),
@@ -207,6 +216,8 @@ namespace YarnImpact
       require(projectile_friction >= 0.,
               "DEM/Projectile friction coefficient",
               "must not be negative");
+      projectile_contact_law =
+        Contact::law_type(prm.get("Projectile contact law"));
       skin         = get_positive_double(prm, "DEM", "Skin");
       const long c = prm.get_integer("Coordination number");
       require(c >= 0, "DEM/Coordination number", "must not be negative");
@@ -311,32 +322,58 @@ namespace YarnImpact
     }
 
 
-    ContactLaw
+    namespace
+    {
+      /** The constants of a contact of a sphere of (reduced) mass @p mass
+       * [kg] with the ratios and friction of one contact kind: stiffness
+       * @p stiffness_ratio times the truss stiffness @p truss_k [N/m],
+       * damping @p damping_ratio of critical, friction @p friction. */
+      Contact::ContactConstants
+      contact_constants(const Parameters &prm,
+                        const double stiffness_ratio,
+                        const double damping_ratio,
+                        const double friction,
+                        const double truss_k,
+                        const double mass)
+      {
+        Contact::ContactConstants c;
+        c.stiffness = stiffness_ratio * truss_k;
+        c.damping = Contact::critical_damping(damping_ratio, mass, c.stiffness);
+        c.tangential_stiffness = prm.tangential_stiffness_ratio * c.stiffness;
+        c.friction             = friction;
+        c.mass                 = mass;
+        return c;
+      }
+    } // namespace
+
+
+    FibreContactLaw
     fibre_contact_law(const Parameters &prm,
                       const double truss_k,
                       const double sphere_mass)
     {
-      ContactLaw law;
-      law.k_n = prm.normal_stiffness_ratio * truss_k;
-      law.c_n = 2. * prm.damping_ratio * std::sqrt(0.5 * sphere_mass * law.k_n);
-      law.k_t = prm.tangential_stiffness_ratio * law.k_n;
-      law.mu  = prm.friction;
-      return law;
+      // Two free spheres: the reduced mass m/2.
+      return FibreContactLaw(contact_constants(prm,
+                                               prm.normal_stiffness_ratio,
+                                               prm.damping_ratio,
+                                               prm.friction,
+                                               truss_k,
+                                               0.5 * sphere_mass));
     }
 
 
-    ContactLaw
-    projectile_contact_law(const Parameters &prm,
-                           const double truss_k,
-                           const double sphere_mass)
+    Contact::ContactConstants
+    projectile_contact_constants(const Parameters &prm,
+                                 const double truss_k,
+                                 const double sphere_mass)
     {
-      ContactLaw law;
-      law.k_n = prm.projectile_stiffness_ratio * truss_k;
-      law.c_n =
-        2. * prm.projectile_damping_ratio * std::sqrt(sphere_mass * law.k_n);
-      law.k_t = prm.tangential_stiffness_ratio * law.k_n;
-      law.mu  = prm.projectile_friction;
-      return law;
+      // The projectile is much heavier than a sphere: m_eff = m.
+      return contact_constants(prm,
+                               prm.projectile_stiffness_ratio,
+                               prm.projectile_damping_ratio,
+                               prm.projectile_friction,
+                               truss_k,
+                               sphere_mass);
     }
 
 
@@ -345,11 +382,13 @@ namespace YarnImpact
                        const double truss_k,
                        const double sphere_mass)
     {
-      const ContactLaw fibre = fibre_contact_law(prm, truss_k, sphere_mass);
-      const ContactLaw projectile =
-        projectile_contact_law(prm, truss_k, sphere_mass);
+      const FibreContactLaw fibre =
+        fibre_contact_law(prm, truss_k, sphere_mass);
+      const Contact::ContactConstants projectile =
+        projectile_contact_constants(prm, truss_k, sphere_mass);
       const double omega2 =
-        2. * (2. * truss_k + prm.coordination * fibre.k_n + projectile.k_n) /
+        2. *
+        (2. * truss_k + prm.coordination * fibre.k_n + projectile.stiffness) /
         sphere_mass;
       const double zeta =
         std::max(prm.damping_ratio, prm.projectile_damping_ratio);

@@ -2,8 +2,8 @@
 // and truss failure.
 #pragma GCC optimize("O3")
 
-#include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/forces.h>
+#include <yarn_impact/dem/truss.h>
 
 #include <algorithm>
 

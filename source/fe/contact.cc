@@ -1,3 +1,4 @@
+#include <yarn_impact/contact/projectile_contact.h>
 #include <yarn_impact/fe/contact.h>
 
 #include <deal.II/base/mpi.h>
@@ -23,6 +24,8 @@ namespace YarnImpact
       nodes.push_back(dofs);
       area.push_back(node_area);
       mass.push_back(node_mass);
+      history.insert(history.end(), 3, 0.);
+      touching.push_back(0);
     }
 
 
@@ -40,6 +43,24 @@ namespace YarnImpact
     }
 
 
+    inline Contact::ContactConstants
+    ProjectileContact::node_constants(const unsigned int k) const
+    {
+      Contact::ContactConstants c;
+      c.stiffness = parameters.penalty * area[k];
+      c.damping   = (parameters.damping_ratio > 0.
+                       ? Contact::critical_damping(parameters.damping_ratio,
+                                                 mass[k],
+                                                 c.stiffness)
+                       : 0.);
+      c.tangential_stiffness =
+        parameters.tangential_stiffness_ratio * c.stiffness;
+      c.friction = parameters.friction;
+      c.mass     = mass[k];
+      return c;
+    }
+
+
     double
     ProjectileContact::add_forces(
       const Projectile &projectile,
@@ -50,65 +71,55 @@ namespace YarnImpact
       const double dt,
       double &dissipated)
     {
-      const auto &contact = parameters;
-      const double R      = projectile.radius();
-      const double yc     = projectile.axis_position();
-      const double vp     = projectile.velocity();
+      // A surface node touches within the projectile's radius.
+      const double R  = projectile.radius();
+      const double yc = projectile.axis_position();
+      const double vp = projectile.velocity();
       double reaction = 0., energy = 0.;
-      for (unsigned int k = 0; k < nodes.size(); ++k)
-        {
-          const auto &node = nodes[k];
-          const double px =
-            reference_coordinate[node[0]] + displacement.local_element(node[0]);
-          const double py =
-            reference_coordinate[node[1]] + displacement.local_element(node[1]);
-          const double dx = px, dy = py - yc;
-          const double dist2 = dx * dx + dy * dy;
-          if (dist2 >= R * R)
-            continue;
-          const double dist = std::sqrt(dist2);
-          const double gap  = R - dist;
-          const double nx = dx / dist, ny = dy / dist;
-          const double stiffness = contact.penalty * area[k];
-          // Relative velocity of the node with respect to the cylinder.
-          const double rvx = velocity.local_element(node[0]);
-          const double rvy = velocity.local_element(node[1]) - vp;
-          const double rvz = velocity.local_element(node[2]);
-          const double vn  = rvx * nx + rvy * ny;
-          double fn        = stiffness * gap;
-          if (contact.damping_ratio > 0.)
-            {
-              const double c =
-                2. * contact.damping_ratio * std::sqrt(mass[k] * stiffness);
-              const double fd = std::max(-c * vn, -fn);
-              fn += fd;
-              dissipated += -fd * vn * dt;
-            }
-          double ft[3] = {0., 0., 0.};
-          if (contact.friction > 0.)
-            {
-              const double vt[3] = {rvx - vn * nx, rvy - vn * ny, rvz};
-              const double speed =
-                std::sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
-              // Coulomb's law, explicit: the friction force never exceeds
-              // the one that stops the slip within the step (m |v_t| / dt),
-              // so that sticking nodes do not chatter.
-              const double limit = mass[k] * speed / dt;
-              const double scale =
-                speed > 0. ? -std::min(contact.friction * fn, limit) / speed
-                           : 0.;
-              for (unsigned int d = 0; d < 3; ++d)
-                ft[d] = scale * vt[d];
-              dissipated +=
-                -(ft[0] * vt[0] + ft[1] * vt[1] + ft[2] * vt[2]) * dt;
-            }
-          force.local_element(node[0]) += fn * nx + ft[0];
-          force.local_element(node[1]) += fn * ny + ft[1];
-          force.local_element(node[2]) += ft[2];
-          reaction -= fn * ny + ft[1];
-          energy += 0.5 * stiffness * gap * gap;
-        }
-      penalty_energy = energy;
+      // The law is chosen once per call; the loop over the nodes is
+      // instantiated for each law.
+      Contact::with_contact_law(parameters.law, [&](auto tag) {
+        using Law                           = typename decltype(tag)::type;
+        constexpr unsigned int history_size = Law::history_size;
+        for (unsigned int k = 0; k < nodes.size(); ++k)
+          {
+            const auto &node = nodes[k];
+            const double px  = reference_coordinate[node[0]] +
+                              displacement.local_element(node[0]);
+            const double py = reference_coordinate[node[1]] +
+                              displacement.local_element(node[1]);
+            double delta, n[3];
+            if (!Contact::projectile_overlap(px, py, yc, R, delta, n))
+              {
+                if constexpr (history_size > 0)
+                  touching[k] = 0;
+                continue;
+              }
+            double *xi = &history[3 * k];
+            if constexpr (history_size > 0)
+              {
+                // A new contact starts without tangential history.
+                if (!touching[k])
+                  for (unsigned int c = 0; c < history_size; ++c)
+                    xi[c] = 0.;
+                touching[k] = 1;
+              }
+            const double v[3] = {velocity.local_element(node[0]),
+                                 velocity.local_element(node[1]),
+                                 velocity.local_element(node[2])};
+            double vr[3];
+            Contact::relative_to_projectile(v, vp, vr);
+            const Law law(node_constants(k));
+            double f[3];
+            Contact::contact_force(law, delta, n, vr, dt, xi, f, dissipated);
+            force.local_element(node[0]) += f[0];
+            force.local_element(node[1]) += f[1];
+            force.local_element(node[2]) += f[2];
+            reaction -= f[1];
+            energy += law.energy(delta, xi);
+          }
+      });
+      stored_energy = energy;
       return reaction;
     }
   } // namespace FE

@@ -109,6 +109,15 @@ namespace YarnImpact
       prm.leave_subsection();
 
       prm.enter_subsection("Contact");
+      prm.declare_entry("Law",
+                        "Penalty-Coulomb",
+                        Patterns::Selection(Contact::law_selection()),
+                        "Contact law of a surface node "
+                        "(doc/architecture.md section 3): Penalty-Coulomb "
+                        "(damping that never pulls, explicit Coulomb "
+                        "friction on the slip velocity) or Cundall-Strack "
+                        "(spring-dashpot, tangential spring with Coulomb's "
+                        "limit; the DEM's law).");
       prm.declare_entry("Penalty",
                         "5e13",
                         Patterns::Double(),
@@ -127,6 +136,12 @@ namespace YarnImpact
                         "Viscous damping of the contact as a fraction of the "
                         "critical damping of a surface node on its penalty "
                         "spring [-].");
+      prm.declare_entry("Tangential stiffness ratio",
+                        "0.2857142857142857",
+                        Patterns::Double(),
+                        "Tangential stiffness of a surface node's contact "
+                        "divided by its normal (penalty) stiffness, for the "
+                        "Cundall-Strack law, in [0, 1] [-].");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -178,6 +193,7 @@ namespace YarnImpact
       prm.leave_subsection();
 
       prm.enter_subsection("Contact");
+      contact.law      = Contact::law_type(prm.get("Law"));
       contact.penalty  = get_positive_double(prm, "FE/Contact", "Penalty");
       contact.friction = prm.get_double("Friction coefficient");
       require(contact.friction >= 0.,
@@ -187,6 +203,13 @@ namespace YarnImpact
       require(contact.damping_ratio >= 0. && contact.damping_ratio < 1.,
               "FE/Contact/Damping ratio",
               "must lie in [0, 1)");
+      contact.tangential_stiffness_ratio =
+        prm.get_double("Tangential stiffness ratio");
+      // The contact's stable step is that of the normal spring.
+      require(contact.tangential_stiffness_ratio >= 0. &&
+                contact.tangential_stiffness_ratio <= 1.,
+              "FE/Contact/Tangential stiffness ratio",
+              "must lie in [0, 1]");
       prm.leave_subsection();
       prm.leave_subsection();
     }

@@ -2,8 +2,8 @@
 // fibres, all inside the ellipse, no overlap, symmetric) and the contact law
 // (restitution coefficient from the damping, energy conservation without
 // damping, Coulomb sliding).
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/parameter_tools.h>
-#include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/packing.h>
 
 #include <cmath>
@@ -59,7 +59,7 @@ namespace
   collide(const double zeta, double &e, double &energy_error)
   {
     const double m = 1.9543e-12, k = 3.99e5, d = 12e-6, v0 = 10.;
-    ContactLaw law;
+    Contact::CundallStrackLaw law;
     law.k_n         = k;
     law.c_n         = 2. * zeta * std::sqrt(0.5 * m * k);
     law.k_t         = 2. / 7. * k;
@@ -77,7 +77,7 @@ namespace
           const double n[3]  = {-1., 0., 0.}; // from sphere 1 to sphere 0
           const double vr[3] = {v[0] - v[1], 0., 0.};
           double fc[3];
-          law.force(delta, n, vr, dt, xi, fc, dissipated);
+          Contact::contact_force(law, delta, n, vr, dt, xi, fc, dissipated);
           f[0] = fc[0];
           f[1] = -fc[0];
         }
@@ -109,7 +109,7 @@ namespace
   slide(const double P, const double N, const double mu)
   {
     const double m = 1.9543e-12, k = 3.99e5;
-    ContactLaw law;
+    Contact::CundallStrackLaw law;
     law.k_n         = k;
     law.c_n         = 2. * 0.5 * std::sqrt(m * k);
     law.k_t         = 2. / 7. * k;
@@ -124,7 +124,7 @@ namespace
       const double vr[3] = {vel[0], vel[1], 0.};
       double fc[3]       = {0., 0., 0.};
       if (delta > 0.)
-        law.force(delta, n, vr, dt, xi, fc, dissipated);
+        Contact::contact_force(law, delta, n, vr, dt, xi, fc, dissipated);
       frc[0] = fc[0] + P;
       frc[1] = fc[1] - N;
     };

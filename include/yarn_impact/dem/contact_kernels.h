@@ -1,7 +1,8 @@
 #ifndef yarn_impact_dem_contact_kernels_h
 #define yarn_impact_dem_contact_kernels_h
 
-#include <yarn_impact/dem/contact_law.h>
+#include <yarn_impact/contact/contact_law.h>
+#include <yarn_impact/dem/parameters.h>
 
 #include <algorithm>
 #include <cmath>
@@ -48,7 +49,7 @@ namespace YarnImpact
        * and true; false (nothing touched) if they do not.
        */
       inline bool
-      pair_contact_force(const ContactLaw &law,
+      pair_contact_force(const FibreContactLaw &law,
                          const double d,
                          const double d2,
                          const double xi,
@@ -73,7 +74,7 @@ namespace YarnImpact
         const double vr[3] = {vi[0] - sx * vj[0],
                               vi[1] - vj[1],
                               vi[2] - sz * vj[2]};
-        law.force(d - dist, n, vr, dt, xi_t, f, dissipated);
+        Contact::contact_force(law, d - dist, n, vr, dt, xi_t, f, dissipated);
         return true;
       }
 
@@ -85,7 +86,7 @@ namespace YarnImpact
        * pair_contact_force(), on the same geometry.
        */
       inline double
-      pair_contact_energy(const ContactLaw &law,
+      pair_contact_energy(const FibreContactLaw &law,
                           const double d,
                           const double *x_i,
                           const double *xj,

@@ -1,10 +1,11 @@
 #ifndef yarn_impact_dem_forces_h
 #define yarn_impact_dem_forces_h
 
-#include <yarn_impact/dem/contact_law.h>
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/dem/decomposition.h>
 #include <yarn_impact/dem/fibre_chains.h>
 #include <yarn_impact/dem/neighbour_lists.h>
+#include <yarn_impact/dem/parameters.h>
 #include <yarn_impact/dem/spheres.h>
 
 #include <vector>
@@ -43,7 +44,7 @@ namespace YarnImpact
        */
       void
       fibre_contact_forces(std::vector<ListBlock> &blocks,
-                           const ContactLaw &law,
+                           const FibreContactLaw &law,
                            const double d,
                            const Decomposition &decomposition,
                            const double *__restrict x,
@@ -60,7 +61,7 @@ namespace YarnImpact
        */
       void
       mirror_contact_forces(std::vector<ListBlock> &blocks,
-                            const ContactLaw &law,
+                            const FibreContactLaw &law,
                             const double d,
                             const Decomposition &decomposition,
                             const double *__restrict x,
@@ -71,16 +72,18 @@ namespace YarnImpact
 
       /**
        * The contact forces of the rigid cylindrical @p projectile on the
-       * owned spheres of the cross-sections that can reach it, by @p law
-       * over the step @p dt [s], added to the forces of @p spheres [N]; the
-       * energy dissipated is added to @p dissipated [J] and the contact
-       * geometry stored in @p contact.
+       * owned spheres of the cross-sections that can reach it, by the law
+       * @p law_type built from @p constants, over the step @p dt [s], added to
+       * the forces of @p spheres [N]; the energy dissipated is added to
+       * @p dissipated [J] and the contact geometry stored in @p contact.
+       * The law is chosen once per call, not per sphere.
        * @return the reaction (y-force on the projectile) of this rank's
        * modelled part [N]
        */
       double
       projectile_contact_forces(const Projectile &projectile,
-                                const ContactLaw &law,
+                                const Contact::LawType law_type,
+                                const Contact::ContactConstants &constants,
                                 const FibreChains &chains,
                                 const Decomposition &decomposition,
                                 Spheres &spheres,

@@ -1,12 +1,13 @@
 #ifndef yarn_impact_dem_observables_h
 #define yarn_impact_dem_observables_h
 
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/decomposition.h>
 #include <yarn_impact/dem/fibre_chains.h>
 #include <yarn_impact/dem/neighbour_lists.h>
+#include <yarn_impact/dem/parameters.h>
 #include <yarn_impact/dem/spheres.h>
 
 #include <string>
@@ -29,14 +30,16 @@ namespace YarnImpact
       class ObservablesMeter
       {
       public:
-        /** A meter of the model made of these parts; @p fibre_law and
-         * @p projectile_law are read at every measure(). */
+        /** A meter of the model made of these parts; @p fibre_law and the
+         * projectile's law @p projectile_law with its @p projectile_constants
+         * are read at every measure(). */
         ObservablesMeter(const FibreChains &chains,
                          const Decomposition &decomposition,
                          const Spheres &spheres,
                          const NeighbourLists &lists,
-                         const ContactLaw &fibre_law,
-                         const ContactLaw &projectile_law);
+                         const FibreContactLaw &fibre_law,
+                         const Contact::LawType projectile_law,
+                         const Contact::ContactConstants &projectile_constants);
 
         /** Record the initial width of the folded profile [m] (at set-up,
          * collective). */
@@ -58,7 +61,9 @@ namespace YarnImpact
         const Decomposition &decomposition;
         const Spheres &spheres;
         const NeighbourLists &lists;
-        const ContactLaw &fibre_law, &projectile_law;
+        const FibreContactLaw &fibre_law;
+        const Contact::LawType projectile_law;
+        const Contact::ContactConstants &projectile_constants;
         /** Initial width of each profile station [m]. */
         std::vector<double> initial_width;
         /** Scratch of the reductions. */

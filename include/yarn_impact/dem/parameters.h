@@ -1,9 +1,9 @@
 #ifndef yarn_impact_dem_parameters_h
 #define yarn_impact_dem_parameters_h
 
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/memory_estimate.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/packing.h>
 
 #include <string>
@@ -18,6 +18,13 @@ namespace YarnImpact
   /** The microscopic discrete-element reference model (doc/dem.md). */
   namespace DEM
   {
+    /**
+     * The fibre-fibre contact law: always the spring-dashpot with a
+     * tangential spring (the pair kernels keep its history), unlike the
+     * projectile's, which is chosen by `Projectile contact law`.
+     */
+    using FibreContactLaw = Contact::CundallStrackLaw;
+
     /** Where the fibre centres come from. */
     enum class FibreLayout
     {
@@ -55,6 +62,9 @@ namespace YarnImpact
       double projectile_damping_ratio = 0.1;
       /** Projectile-fibre Coulomb friction coefficient [-]. */
       double projectile_friction = 0.2;
+      /** Projectile-fibre contact law (`Projectile contact law`). */
+      Contact::LawType projectile_contact_law =
+        Contact::LawType::cundall_strack;
       /** Verlet skin of the neighbour lists [m]. */
       double skin = 4e-6;
       /** Contacts per sphere assumed by the stable time step [-]. */
@@ -152,18 +162,20 @@ namespace YarnImpact
      * m/2), tangential spring and Coulomb friction (doc/dem.md section 2).
      * The impact model and the elementary tests use this one law.
      */
-    ContactLaw
+    FibreContactLaw
     fibre_contact_law(const Parameters &prm,
                       const double truss_k,
                       const double sphere_mass);
 
-    /** The projectile-fibre contact law of @p prm (m_eff = m), as
-     * fibre_contact_law(); the elementary tests' rigid walls use its normal
-     * part. */
-    ContactLaw
-    projectile_contact_law(const Parameters &prm,
-                           const double truss_k,
-                           const double sphere_mass);
+    /** The constants of the projectile-fibre contact of @p prm, as
+     * fibre_contact_law() (m_eff = m, the sphere's mass, which is also the
+     * mass of ContactConstants); the law `projectile_contact_law` of @p prm
+     * is built from them, and the elementary tests' rigid walls use their
+     * normal part. */
+    Contact::ContactConstants
+    projectile_contact_constants(const Parameters &prm,
+                                 const double truss_k,
+                                 const double sphere_mass);
 
     /**
      * Largest stable step of a sphere of mass @p sphere_mass [kg] with two

@@ -1,9 +1,11 @@
 #ifndef yarn_impact_dem_periodic_segment_h
 #define yarn_impact_dem_periodic_segment_h
 
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/dem/contact_law.h>
 #include <yarn_impact/dem/elementary_test.h>
+#include <yarn_impact/dem/parameters.h>
+#include <yarn_impact/dem/truss.h>
 #include <yarn_impact/fe/constitutive_law.h>
 
 #include <mpi.h>
@@ -17,9 +19,23 @@ namespace YarnImpact
   namespace DEM
   {
     /** The periodic yarn segment of the DEM elementary tests
-     * (doc/identification.md section 2); used by elementary_test.cc. */
+     * (doc/identification.md section 2); used by elementary_test.cc. The
+     * segment's members are defined in periodic_segment.cc (set-up and
+     * step), periodic_segment_lists.cc, periodic_segment_forces.cc and
+     * periodic_segment_measures.cc. */
     namespace internal
     {
+      /** The separation @p dx [m] along the periodic axis of length @p L
+       * [m] taken to the nearest image; |dx| < 1.5 L here (the same result
+       * as dx - L round(dx/L), without the call). Used by the lists, the
+       * forces and the measures of the segment alike. */
+      inline double
+      nearest_image(const double dx, const double L)
+      {
+        return dx > 0.5 * L ? dx - L : (dx < -0.5 * L ? dx + L : dx);
+      }
+
+
       /** A rigid wall normal to y or z: a plate (y) or a side wall (z). */
       struct Wall
       {
@@ -115,7 +131,12 @@ namespace YarnImpact
         double V0 = 0.;
         /** Segment length at rest and now [m]. */
         double Lx0 = 0., Lx = 0.;
-        ContactLaw fibre_law, wall_law;
+        /** The impact model's fibre-fibre law. */
+        FibreContactLaw fibre_law;
+        /** The walls' law: the projectile's normal constants on the
+         * Cundall-Strack law without friction, whatever
+         * `Projectile contact law` says. */
+        Contact::CundallStrackLaw wall_law;
         unsigned int f_begin = 0, f_end = 0;
         std::size_t i_begin = 0, i_end = 0;
 

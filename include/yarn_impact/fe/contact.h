@@ -1,6 +1,7 @@
 #ifndef yarn_impact_fe_contact_h
 #define yarn_impact_fe_contact_h
 
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/projectile.h>
 #include <yarn_impact/fe/parameters.h>
@@ -10,6 +11,7 @@
 #include <mpi.h>
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace YarnImpact
@@ -18,16 +20,21 @@ namespace YarnImpact
   {
     /**
      * Penalty contact of the yarn's lateral surface nodes with the rigid
-     * cylindrical projectile (axis along z, at x = 0): a normal force
-     * proportional to the penetration and the node's surface area, with
-     * optional viscous damping and optional explicit Coulomb friction.
-     * Node-to-surface penalty is what explicit impact codes use; the
-     * projectile is analytic, so no contact search is needed.
+     * cylindrical projectile (axis along z, at x = 0): each touching node
+     * gets the force of the contact law `FE/Contact/Law` (by default
+     * Contact::PenaltyCoulombLaw: a normal force proportional to the
+     * penetration, optional viscous damping, optional explicit Coulomb
+     * friction). What makes it the FE's contact is the constants, not the
+     * law: the normal stiffness of a node is the penalty per area times its
+     * share of the surface, and the damping and friction bound use its
+     * lumped mass. Node-to-surface penalty is what explicit impact codes
+     * use; the projectile is analytic, so no contact search is needed.
      */
     class ProjectileContact
     {
     public:
-      /** @param parameters penalty [Pa/m], friction, damping ratio */
+      /** @param parameters law, penalty [Pa/m], friction, damping ratio,
+       * tangential stiffness ratio */
       explicit ProjectileContact(const ContactParameters &parameters);
 
       /**
@@ -56,7 +63,7 @@ namespace YarnImpact
        * friction work over the step @p dt [s] is added to
        * @p dissipated [J]. Returns the force of this rank's nodes on the
        * projectile along y [N] (not summed over ranks, not scaled by the
-       * symmetry).
+       * symmetry). The law is chosen once per call, not per node.
        */
       double
       add_forces(
@@ -68,28 +75,40 @@ namespace YarnImpact
         const double dt,
         double &dissipated);
 
-      /** Penalty energy [J] of this rank's nodes at the last add_forces(). */
+      /** Contact energy [J] of this rank's nodes at the last add_forces(). */
       double
       energy() const
       {
-        return penalty_energy;
+        return stored_energy;
       }
 
-      /** Write the contact's state (its penalty energy) to a checkpoint. */
+      /** Write the contact's state (tangential histories, which nodes
+       * touch, the stored energy) to a checkpoint. */
       void
       save(Checkpoint::Writer &out) const
       {
-        out.put(penalty_energy);
+        out.put(history);
+        out.put(touching);
+        out.put(stored_energy);
       }
 
       /** Read what save() wrote. */
       void
       load(Checkpoint::Reader &in)
       {
-        in.get(penalty_energy);
+        in.get_same_size(history, "tangential history of the contact nodes");
+        in.get_same_size(touching, "contact state of the contact nodes");
+        in.get(stored_energy);
       }
 
     private:
+      /** The contact constants of node @p k: the normal stiffness penalty
+       * x area [N/m], the damping of its lumped mass on that spring
+       * [N s/m], the tangential stiffness [N/m], the friction coefficient
+       * [-] and its mass [kg]. */
+      Contact::ContactConstants
+      node_constants(const unsigned int k) const;
+
       const ContactParameters parameters;
       /** Local indices of the x, y, z dofs of each node. */
       std::vector<std::array<unsigned int, 3>> nodes;
@@ -97,7 +116,13 @@ namespace YarnImpact
       std::vector<double> area;
       /** Lumped mass of each node [kg]. */
       std::vector<double> mass;
-      double penalty_energy = 0.;
+      /** Tangential history of each node, 3 doubles, for a law that keeps
+       * one [m]. */
+      std::vector<double> history;
+      /** Whether each node touched the projectile at the last
+       * add_forces() (a new contact starts without history). */
+      std::vector<std::uint8_t> touching;
+      double stored_energy = 0.;
     };
   } // namespace FE
 } // namespace YarnImpact

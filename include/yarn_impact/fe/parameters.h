@@ -1,6 +1,8 @@
 #ifndef yarn_impact_fe_parameters_h
 #define yarn_impact_fe_parameters_h
 
+#include <yarn_impact/contact/contact_law.h>
+
 #include <string>
 
 namespace dealii
@@ -49,12 +51,17 @@ namespace YarnImpact
     /** Projectile-yarn contact (subsection `FE/Contact`). */
     struct ContactParameters
     {
+      /** Contact law of a surface node (contact/contact_law.h). */
+      Contact::LawType law = Contact::LawType::penalty_coulomb;
       /** Penalty: contact pressure per unit penetration [Pa/m]. */
       double penalty = 5e13;
       /** Coulomb friction coefficient between projectile and yarn [-]. */
       double friction = 0.;
       /** Viscous damping of the contact, fraction of critical [-]. */
       double damping_ratio = 0.;
+      /** Tangential stiffness over the normal one, for a law with a
+       * tangential spring (Cundall-Strack) [-]. */
+      double tangential_stiffness_ratio = 0.2857142857142857;
     };
 
     /** All parameters of the FE model (subsection `FE`). */

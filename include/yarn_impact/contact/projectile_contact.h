@@ -1,0 +1,57 @@
+#ifndef yarn_impact_contact_projectile_contact_h
+#define yarn_impact_contact_projectile_contact_h
+
+#include <cmath>
+
+namespace YarnImpact
+{
+  namespace Contact
+  {
+    /**
+     * The geometry of a point of the yarn touching the rigid cylindrical
+     * projectile (axis along z, at x = 0 and y = @p axis_y [m]), shared by
+     * the FE's surface nodes and the DEM's spheres: the point at
+     * (@p x, @p y) [m] touches when it is closer to the axis than
+     * @p reach [m], which is where the models differ: the projectile's
+     * radius for a surface node, the radius plus the sphere's for a
+     * sphere centre. If it touches, the overlap @p delta [m] and the unit
+     * normal @p n (in the x-y plane, from the axis to the point) are set
+     * and true is returned; false (nothing set) if it does not.
+     */
+    inline bool
+    projectile_overlap(const double x,
+                       const double y,
+                       const double axis_y,
+                       const double reach,
+                       double &delta,
+                       double *n)
+    {
+      const double ex = x, ey = y - axis_y;
+      const double r2 = ex * ex + ey * ey;
+      if (r2 >= reach * reach)
+        return false;
+      const double rho = std::sqrt(r2);
+      delta            = reach - rho;
+      n[0]             = ex / rho;
+      n[1]             = ey / rho;
+      n[2]             = 0.;
+      return true;
+    }
+
+
+    /** The velocity @p v_rel [m/s] of a point moving at @p v [m/s]
+     * relative to the projectile moving at @p projectile_velocity [m/s]
+     * along y. */
+    inline void
+    relative_to_projectile(const double *v,
+                           const double projectile_velocity,
+                           double *v_rel)
+    {
+      v_rel[0] = v[0];
+      v_rel[1] = v[1] - projectile_velocity;
+      v_rel[2] = v[2];
+    }
+  } // namespace Contact
+} // namespace YarnImpact
+
+#endif
