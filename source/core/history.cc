@@ -28,7 +28,9 @@ namespace YarnImpact
             "spreading front [mm]",
             "section width at impact [mm]",
             "plateau strain [-]",
-            "section RMS width at impact [mm]"};
+            "section RMS width at impact [mm]",
+            "eroded elements",
+            "damaged elements"};
   }
 
   History::History(const std::string &directory,
@@ -65,7 +67,8 @@ namespace YarnImpact
          << r.fronts.longitudinal * 1e3 << ',' << r.fronts.transverse * 1e3
          << ',' << r.fronts.spreading * 1e3 << ','
          << r.fronts.width_at_impact * 1e3 << ',' << r.fronts.plateau_strain
-         << ',' << r.fronts.rms_width_at_impact * 1e3 << '\n';
+         << ',' << r.fronts.rms_width_at_impact * 1e3 << ',' << m.n_eroded
+         << ',' << m.n_damaged << '\n';
     file.append(line.str());
   }
 } // namespace YarnImpact
