@@ -259,28 +259,19 @@ namespace YarnImpact
                   }
                 if (max_Ie > cells.kappa[c])
                   {
-                    cells.kappa[c] = max_Ie;
                     const double d =
                       failure.damage(max_Ie, cells.fibre_length[c]);
-                    if (d > cells.damage[c])
-                      {
-                        // The fibre energy that the new damage removes is
-                        // dissipated (d only grows: irreversible): the
-                        // integral of W_f dd over the step, by the
-                        // trapezoidal rule between the fibre energies of
-                        // the last step and this one. (The energy at the
-                        // end of the step alone overestimates it when a
-                        // cell softens within a few steps, and the energy
-                        // balance then drifts by up to 2 %: the velocity
-                        // Verlet work of the step sees the forces before
-                        // and after the damage, i.e. the trapezoid.)
-                        dissipated += (d - cells.damage[c]) * 0.5 *
-                                      (cells.fibre_energy[c] + fibre_energy);
-                        cells.damage[c] = d;
-                      }
+                    // What the law dissipates: the exact integral along
+                    // its envelope (d only grows: irreversible).
+                    dissipated += dissipation_increment(failure,
+                                                        cells.kappa[c],
+                                                        max_Ie,
+                                                        fibre_energy,
+                                                        cells.fibre_length[c]);
+                    cells.kappa[c]  = max_Ie;
+                    cells.damage[c] = std::max(cells.damage[c], d);
                   }
-                cells.fibre_energy[c] = fibre_energy;
-                fibre_damage          = cells.damage[c];
+                fibre_damage = cells.damage[c];
               }
           const CellResult r = integrate(law, u, grad, JxW, fibre_damage, f);
           const double cell_energy  = r.energy;

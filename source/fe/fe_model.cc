@@ -184,7 +184,6 @@ namespace YarnImpact
       cells.mean_log_stretch.assign(n_owned_cells, 0.);
       cells.damage.assign(n_owned_cells, 0.);
       cells.kappa.assign(n_owned_cells, 0.);
-      cells.fibre_energy.assign(n_owned_cells, 0.);
       const bool progressive =
         shared.yarn.failure_model ==
         YarnImpact::Parameters::Yarn::FailureModel::progressive;

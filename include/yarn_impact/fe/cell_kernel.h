@@ -6,6 +6,7 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace YarnImpact
@@ -162,6 +163,38 @@ namespace YarnImpact
     };
 
     /**
+     * The energy [J] that the progressive law dissipates in a cell whose
+     * history variable grows from @p kappa_old to @p kappa_new [-], with
+     * the undamaged fibre energy @p fibre_energy [J] at kappa_new and the
+     * cell length @p h [m] along the fibre. Along the envelope the
+     * dissipation per unit volume is 1/2 k_e kappa^2 dd =
+     * 1/2 k_e I_0 I_u / (I_u - I_0) dkappa, a constant rate (doc/theory.md
+     * section 5.3), so the increment is that rate times the part of
+     * [kappa_old, kappa_new] inside [I_0, I_u], times the volume of the
+     * band. The volume is fibre_energy / (1/2 k_e kappa_new^2): the whole
+     * cell when its strain is uniform (then the crack dissipates G_f per
+     * unit area exactly, whatever the step), less when its Gauss points
+     * are stretched less than the largest, whose fibre energy the damage
+     * then removes in proportion, so that the energy balance closes.
+     */
+    inline double
+    dissipation_increment(const FailureLaw &law,
+                          const double kappa_old,
+                          const double kappa_new,
+                          const double fibre_energy,
+                          const double h)
+    {
+      const double I_0 = law.onset_log_stretch;
+      const double I_u = law.final_log_stretch(h);
+      const double lo  = std::max(kappa_old, I_0);
+      const double hi  = std::min(kappa_new, I_u);
+      if (hi <= lo)
+        return 0.;
+      return fibre_energy * I_0 * I_u * (hi - lo) /
+             ((I_u - I_0) * kappa_new * kappa_new);
+    }
+
+    /**
      * The owned cells as the internal-force loop sees them, cell c at
      * c * n_cell_dofs, c * grad_size, c * n_q in the flat arrays, and what
      * the loop keeps of each.
@@ -186,10 +219,7 @@ namespace YarnImpact
       /** Reference length of the cell along the fibre [m] (the crack
        * band's width). */
       std::vector<double> fibre_length;
-      /** The undamaged fibre energy sum_q 1/2 k_e I_e^2 JxW of the cell at
-       * the last force evaluation [J] (progressive failure: the
-       * dissipation of a step is integrated with it). */
-      std::vector<double> fibre_energy;
+
       /** Largest ln(lambda_f) over the Gauss points: the strains are
        * expm1() of it, taken only where they are reported. */
       std::vector<double> log_stretch;
