@@ -243,9 +243,9 @@ namespace YarnImpact
      * compresses) and returns the strain energy [J] of the cells. The
      * failure law @p failure breaks, damages and erodes cells (FailureLaw);
      * the energy they release [J] goes to @p dissipated: the strain energy
-     * of a broken or eroded cell, and for fibre damage growing from d to
-     * d' the fibre energy (d' - d) sum_q 1/2 k_e I_e^2 JxW, so that the
-     * energy balance closes.
+     * of a broken or eroded cell, and for fibre damage the law's
+     * dissipation along its envelope (dissipation_increment()), so that
+     * the energy balance closes.
      *
      * Instantiated for each law of YARN_IMPACT_FE_FOR_EACH_LAW.
      */
