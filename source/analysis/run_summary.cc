@@ -266,6 +266,18 @@ namespace YarnImpact
       out << s.first_failure_time * 1e6 << " us\n";
     else
       out << "none\n";
+    // Erosion (cells crushed below J = 0.2, inverted or non-finite) is a
+    // numerical removal, not a material failure: its own line, FE only
+    // (the DEM does not erode).
+    if (s.model_name == "fe")
+      {
+        out << "  eroded cells:               ";
+        if (s.first_erosion_time >= 0.)
+          out << s.n_eroded << " (first at " << s.first_erosion_time * 1e6
+              << " us)\n";
+        else
+          out << "none\n";
+      }
     out << "  yarn cut through:           ";
     if (s.cut_through_time >= 0.)
       out << s.cut_through_time * 1e6 << " us\n";

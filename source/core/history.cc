@@ -29,7 +29,9 @@ namespace YarnImpact
             "spreading front [mm]",
             "section width at impact [mm]",
             "plateau strain [-]",
-            "section RMS width at impact [mm]"};
+            "section RMS width at impact [mm]",
+            "eroded elements",
+            "damaged elements"};
   }
 
   void
@@ -93,6 +95,8 @@ namespace YarnImpact
         out.put(m.dissipated_energy);
         out.put(m.max_strain);
         out.put(m.n_failed);
+        out.put(m.n_eroded);
+        out.put(m.n_damaged);
         out.put(m.cut_through);
         out.put(r.fronts);
       }
@@ -124,6 +128,8 @@ namespace YarnImpact
         in.get(m.dissipated_energy);
         in.get(m.max_strain);
         in.get(m.n_failed);
+        in.get(m.n_eroded);
+        in.get(m.n_damaged);
         in.get(m.cut_through);
         in.get(r.fronts);
         rows.push_back(std::move(r));
@@ -155,7 +161,8 @@ namespace YarnImpact
          << r.fronts.longitudinal * 1e3 << ',' << r.fronts.transverse * 1e3
          << ',' << r.fronts.spreading * 1e3 << ','
          << r.fronts.width_at_impact * 1e3 << ',' << r.fronts.plateau_strain
-         << ',' << r.fronts.rms_width_at_impact * 1e3 << '\n';
+         << ',' << r.fronts.rms_width_at_impact * 1e3 << ',' << m.n_eroded
+         << ',' << m.n_damaged << '\n';
     return line.str();
   }
 } // namespace YarnImpact

@@ -464,8 +464,15 @@ namespace YarnImpact
             add_history_row(row);
             result.max_energy_error =
               std::max(result.max_energy_error, std::abs(row.energy_error));
-            if (result.first_failure_time < 0. && m.n_failed > 0)
+            // The first fibre break: a failed cell or truss, or the first
+            // cell whose progressive fibre damage has started. Erosion is
+            // not failure.
+            if (result.first_failure_time < 0. &&
+                (m.n_failed > 0 || m.n_damaged > 0))
               result.first_failure_time = t;
+            if (result.first_erosion_time < 0. && m.n_eroded > 0)
+              result.first_erosion_time = t;
+            result.n_eroded = m.n_eroded;
             schedule.history_written();
 
             if (snapshot_due)
@@ -474,7 +481,7 @@ namespace YarnImpact
                 write_snapshot(t);
                 schedule.snapshot_written();
               }
-            if (result.cut_through_time < 0. && m.n_failed > 0 && m.cut_through)
+            if (result.cut_through_time < 0. && m.cut_through)
               result.cut_through_time = t;
             if (p.time.stop_at_cut_through && result.cut_through_time >= 0. &&
                 t >= result.cut_through_time + p.time.time_after_cut_through -

@@ -110,6 +110,38 @@ namespace YarnImpact
                         Patterns::Bool(),
                         "Whether failure at the failure strain is modelled; "
                         "when false the yarn never breaks.");
+      prm.declare_entry(
+        "Failure model",
+        "sudden",
+        Patterns::Selection("sudden|progressive"),
+        "How an FE cell fails (the DEM's trusses always break at once at "
+        "the failure strain). sudden: the paper's criterion, a cell whose "
+        "largest Gauss-point fibre strain passes the failure strain loses "
+        "all its stress in one step. progressive: from the failure strain "
+        "on, the fibre stress of the cell softens linearly with its fibre "
+        "strain down to zero, the slope set by Fracture energy and the "
+        "cell's length along the fibre (crack band), and the released "
+        "energy is counted as dissipated.");
+      prm.declare_entry(
+        "Damage onset strain",
+        "0.0347",
+        Patterns::Double(),
+        "Progressive failure model: the largest Gauss-point fibre strain of "
+        "an FE cell at which its fibre damage starts [-]. A cell averages "
+        "some 30 fibres over 0.254 mm and does not resolve the strain peak "
+        "of the fibres on the nose, so its fibres start breaking below the "
+        "fibre failure strain; calibrated at 120 m/s against the DEM's "
+        "first break by scripts/identify_fibre_failure.py "
+        "(doc/identification.md section 6).");
+      prm.declare_entry(
+        "Fracture energy",
+        "5.41e4",
+        Patterns::Double(),
+        "Energy dissipated per unit area of a crack across the yarn by the "
+        "progressive failure model, G_f [J/m^2]; identified from the DEM "
+        "by scripts/identify_fibre_failure.py (doc/identification.md "
+        "section 6). Must exceed the elastic energy per unit area of the "
+        "longest cell at the failure strain.");
       prm.leave_subsection();
     }
 
@@ -127,6 +159,12 @@ namespace YarnImpact
       fibre_modulus   = get_positive_double(prm, "Yarn", "Fibre Young modulus");
       failure_strain  = get_positive_double(prm, "Yarn", "Failure strain");
       failure         = prm.get_bool("Failure");
+      failure_model   = prm.get("Failure model") == "progressive"
+                          ? FailureModel::progressive
+                          : FailureModel::sudden;
+      fracture_energy = get_positive_double(prm, "Yarn", "Fracture energy");
+      damage_onset_strain =
+        get_positive_double(prm, "Yarn", "Damage onset strain");
       prm.leave_subsection();
     }
 

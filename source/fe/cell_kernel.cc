@@ -32,6 +32,7 @@ namespace YarnImpact
                        const double *u,
                        const double *grad,
                        const double *JxW,
+                       const double fibre_damage,
                        double *f)
       {
         CellResult r;
@@ -44,7 +45,21 @@ namespace YarnImpact
             Matrix3 F, P;
             deformation_gradient(u, g, F);
             Invariants inv;
-            const double W   = law.stress(F, P, inv);
+            double W = law.stress(F, P, inv);
+            if constexpr (Law::separable_fibre_term)
+              if (fibre_damage > 0.)
+                {
+                  // Remove d times the fibre part (k_e I_e / I4) F M (x) M
+                  // of P and d times 1/2 k_e I_e^2 of W (M = e_x: column 0
+                  // of F).
+                  const double I4 = F[0] * F[0] + F[3] * F[3] + F[6] * F[6];
+                  const double k  = fibre_damage * law.axial_modulus();
+                  const double a  = k * inv.elongation / I4;
+                  P[0] -= a * F[0];
+                  P[3] -= a * F[3];
+                  P[6] -= a * F[6];
+                  W -= 0.5 * k * inv.elongation * inv.elongation;
+                }
             r.max_elongation = std::max(r.max_elongation, inv.elongation);
             r.sum_elongation += inv.elongation;
             r.max_compaction =
@@ -74,6 +89,7 @@ namespace YarnImpact
                       const double *u,
                       const double *grad,
                       const double *JxW,
+                      const double fibre_damage,
                       double *f)
       {
         using internal::Double4;
@@ -99,7 +115,19 @@ namespace YarnImpact
                   F[3 * i + j] += u[3 * a + i] * g[a][j];
             const Double4 J = internal::determinant(F);
             Double4 P[9], Ie, Itc, Itd;
-            const Double4 W = law.stress_kernel(F, P, Ie, Itc, Itd);
+            Double4 W = law.stress_kernel(F, P, Ie, Itc, Itd);
+            if constexpr (Law::separable_fibre_term)
+              if (fibre_damage > 0.)
+                {
+                  // As in integrate_scalar(): the damaged fibre part out.
+                  const Double4 I4 = F[0] * F[0] + F[3] * F[3] + F[6] * F[6];
+                  const double k   = fibre_damage * law.axial_modulus();
+                  const Double4 a  = k * Ie / I4;
+                  P[0] -= a * F[0];
+                  P[3] -= a * F[3];
+                  P[6] -= a * F[6];
+                  W -= (0.5 * k) * Ie * Ie;
+                }
             Double4 jxw;
             std::memcpy(&jxw, JxW + block * n_lanes, sizeof(jxw));
             for (auto &p : P)
@@ -131,12 +159,13 @@ namespace YarnImpact
                      const double *u,
                      const double *grad,
                      const double *JxW,
+                     const double fibre_damage,
                      double *f)
       {
         if constexpr (Law::vectorised)
-          return integrate_lanes(law, u, grad, JxW, f);
+          return integrate_lanes(law, u, grad, JxW, fibre_damage, f);
         else
-          return integrate_scalar(law, u, grad, JxW, f);
+          return integrate_scalar(law, u, grad, JxW, fibre_damage, f);
       }
 
       // Compiled twice, for CPUs with AVX2 and FMA and for any x86-64, and
@@ -151,9 +180,10 @@ namespace YarnImpact
                      const double *u,
                      const double *grad,
                      const double *JxW,
+                     const double fibre_damage,
                      double *f)
       {
-        return integrate_cell(law, u, grad, JxW, f);
+        return integrate_cell(law, u, grad, JxW, fibre_damage, f);
       }
 
       const bool cpu_has_avx2_fma =
@@ -166,13 +196,14 @@ namespace YarnImpact
                 const double *u,
                 const double *grad,
                 const double *JxW,
+                const double fibre_damage,
                 double *f)
       {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
         if (cpu_has_avx2_fma)
-          return integrate_avx2(law, u, grad, JxW, f);
+          return integrate_avx2(law, u, grad, JxW, fibre_damage, f);
 #endif
-        return integrate_cell(law, u, grad, JxW, f);
+        return integrate_cell(law, u, grad, JxW, fibre_damage, f);
       }
     } // namespace
 
@@ -184,14 +215,16 @@ namespace YarnImpact
       CellData &cells,
       const dealii::LinearAlgebra::distributed::Vector<double> &displacement,
       dealii::LinearAlgebra::distributed::Vector<double> &force,
-      const bool failure,
-      const double failure_log_stretch,
+      const FailureLaw &failure,
       double &dissipated)
     {
-      double energy = 0.;
+      using Kind          = FailureLaw::Kind;
+      const bool fails    = failure.kind != Kind::none;
+      const bool progress = failure.kind == Kind::progressive;
+      double energy       = 0.;
       for (unsigned int c = 0; c < cells.size(); ++c)
         {
-          if (cells.failed[c])
+          if (cells.failed[c] != CellState::active)
             continue;
           const unsigned int *dofs = &cells.dofs[c * n_cell_dofs];
           const double *grad       = &cells.grads[c * grad_size];
@@ -199,28 +232,71 @@ namespace YarnImpact
           double u[n_cell_dofs], f[n_cell_dofs];
           for (unsigned int k = 0; k < n_cell_dofs; ++k)
             u[k] = displacement.local_element(dofs[k]);
-          const CellResult r        = integrate(law, u, grad, JxW, f);
+          double fibre_damage = 0.;
+          if constexpr (Law::separable_fibre_term)
+            if (progress)
+              {
+                // The damage of this step, from the fibre stretches of this
+                // configuration, before the forces (explicit, no lag):
+                // F M = e_x + sum_a u_a dN_a/dX at each Gauss point.
+                double max_Ie = -1., fibre_energy = 0.;
+                for (unsigned int q = 0; q < n_q; ++q)
+                  {
+                    double Fx[3] = {1., 0., 0.};
+                    for (unsigned int a = 0; a < n_nodes; ++a)
+                      {
+                        const double g0 = grad[gradient_index(q, a, 0)];
+                        Fx[0] += u[3 * a] * g0;
+                        Fx[1] += u[3 * a + 1] * g0;
+                        Fx[2] += u[3 * a + 2] * g0;
+                      }
+                    const double Ie =
+                      0.5 *
+                      std::log(Fx[0] * Fx[0] + Fx[1] * Fx[1] + Fx[2] * Fx[2]);
+                    max_Ie = std::max(max_Ie, Ie);
+                    fibre_energy +=
+                      0.5 * failure.fibre_modulus * Ie * Ie * JxW[q];
+                  }
+                if (max_Ie > cells.kappa[c])
+                  {
+                    const double d =
+                      failure.damage(max_Ie, cells.fibre_length[c]);
+                    // What the law dissipates: the exact integral along
+                    // its envelope (d only grows: irreversible).
+                    dissipated += dissipation_increment(failure,
+                                                        cells.kappa[c],
+                                                        max_Ie,
+                                                        fibre_energy,
+                                                        cells.fibre_length[c]);
+                    cells.kappa[c]  = max_Ie;
+                    cells.damage[c] = std::max(cells.damage[c], d);
+                  }
+                fibre_damage = cells.damage[c];
+              }
+          const CellResult r = integrate(law, u, grad, JxW, fibre_damage, f);
           const double cell_energy  = r.energy;
           cells.log_stretch[c]      = r.max_elongation;
           cells.mean_log_stretch[c] = r.sum_elongation / n_q;
           cells.compaction[c]       = r.max_compaction;
-          if (failure && r.max_elongation > failure_log_stretch)
+          if (failure.kind == Kind::sudden &&
+              r.max_elongation > failure.onset_log_stretch)
             {
               // The cell breaks: it carries no force from now on, and its
               // elastic energy is released (counted as dissipated).
-              cells.failed[c] = 1;
+              cells.failed[c] = CellState::broken;
               dissipated += cell_energy;
               continue;
             }
-          if (failure && (!std::isfinite(cell_energy) || r.min_J < 0.2))
+          if (fails && (!std::isfinite(cell_energy) || r.min_J < 0.2))
             {
               // A cell crushed to less than a fifth of its volume, or
               // inverted, among the broken ends of a cut yarn: it is eroded,
               // as explicit impact codes do (such a cell would set a
               // vanishing time step); its elastic energy leaves with it
-              // (counted as dissipated). Without failure the run stops
+              // (counted as dissipated). Erosion is a numerical removal,
+              // counted apart from failure. Without failure the run stops
               // instead on the NaN or on the energy error.
-              cells.failed[c] = 1;
+              cells.failed[c] = CellState::eroded;
               if (std::isfinite(cell_energy))
                 dissipated += cell_energy;
               continue;
@@ -239,8 +315,7 @@ namespace YarnImpact
     CellData &,                                                 \
     const dealii::LinearAlgebra::distributed::Vector<double> &, \
     dealii::LinearAlgebra::distributed::Vector<double> &,       \
-    const bool,                                                 \
-    const double,                                               \
+    const FailureLaw &,                                         \
     double &);
     YARN_IMPACT_FE_FOR_EACH_LAW(YARN_IMPACT_FE_INSTANTIATE)
 #undef YARN_IMPACT_FE_INSTANTIATE

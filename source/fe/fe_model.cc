@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <ostream>
+#include <sstream>
 #include <type_traits>
 
 #include "yarn_model.h"
@@ -147,6 +148,9 @@ namespace YarnImpact
                 }
             }
           cell_axis.push_back(axis);
+          // The crack band's width: the cell's reference length along the
+          // fibre (x faces are planes x = const on the extruded mesh).
+          cells.fibre_length.push_back(x_hi - x_lo);
           double volume = 0.;
           for (unsigned int q = 0; q < n_q; ++q)
             volume += fe_values.JxW(q);
@@ -178,7 +182,22 @@ namespace YarnImpact
       cells.failed.assign(n_owned_cells, 0);
       cells.log_stretch.assign(n_owned_cells, 0.);
       cells.mean_log_stretch.assign(n_owned_cells, 0.);
-      failure_log_stretch = std::log1p(shared.yarn.failure_strain);
+      cells.damage.assign(n_owned_cells, 0.);
+      cells.kappa.assign(n_owned_cells, 0.);
+      const bool progressive =
+        shared.yarn.failure_model ==
+        YarnImpact::Parameters::Yarn::FailureModel::progressive;
+      failure_law.onset_log_stretch =
+        std::log1p(progressive ? shared.yarn.damage_onset_strain
+                               : shared.yarn.failure_strain);
+      failure_law.fracture_energy = shared.yarn.fracture_energy;
+      failure_law.fibre_modulus   = law.axial_modulus();
+      failure_law.kind =
+        !shared.yarn.failure ? FailureLaw::Kind::none
+        : shared.yarn.failure_model ==
+            YarnImpact::Parameters::Yarn::FailureModel::progressive
+          ? FailureLaw::Kind::progressive
+          : FailureLaw::Kind::sudden;
       cells.compaction.assign(n_owned_cells, 0.);
 
       // Owned nodes, their constraints and stations. The x dof of a vertex
@@ -260,30 +279,53 @@ namespace YarnImpact
     YarnModel<Law>::stable_time_step() const
     {
       // Per cell, the bound 1/sqrt(sum_k (c_k/h_k)^2) over its three local
-      // directions (doc/theory.md section 3.3) with the current sizes h_k
-      // (distances between opposite face centroids): the yarn flattens
-      // under the projectile and its cells thin.
+      // directions (doc/theory.md section 3.3) with the current sizes h_k:
+      // the yarn flattens under the projectile and its cells thin. h_k is
+      // the cell's altitude across its pair of faces k, V / |a_i x a_j|
+      // with a_k the vectors between opposite face centroids and
+      // V = |a_0 . (a_1 x a_2)|: for a brick it is the distance between
+      // the faces, and it shrinks when the cell is sheared, which the
+      // distance between face centroids does not see (a cell of broken
+      // fibres sheared flat by the projectile has long face-centroid
+      // distances but a small altitude, and the old bound let it go
+      // unstable: doc/validation.md section 4).
       const double c_axial2 = law.axial_modulus() / law.density;
       double rate2          = 0.;
       double min_h2         = std::numeric_limits<double>::max();
       for (unsigned int c = 0; c < cell_index.size(); ++c)
         {
-          if (cells.failed[c])
+          if (cells.failed[c] != CellState::active)
             continue;
           double p[n_nodes][3];
           vertex_positions(c, p);
           Invariants inv;
           inv.compaction        = cells.compaction[c];
           const double c_trans2 = law.transverse_modulus(inv) / law.density;
-          double r2             = 0.;
+          double d[3][3]        = {};
+          for (unsigned int k = 0; k < 3; ++k)
+            for (unsigned int a = 0; a < n_nodes; ++a)
+              for (unsigned int i = 0; i < 3; ++i)
+                d[k][i] += ((a >> k) & 1 ? 0.25 : -0.25) * p[a][i];
+          double cross[3][3]; // cross[k] = d[k+1] x d[k+2]
           for (unsigned int k = 0; k < 3; ++k)
             {
-              double d[3] = {0., 0., 0.};
-              for (unsigned int a = 0; a < n_nodes; ++a)
-                for (unsigned int i = 0; i < 3; ++i)
-                  d[i] += ((a >> k) & 1 ? 0.25 : -0.25) * p[a][i];
-              const double h2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-              r2 += (k == cell_axis[c] ? c_axial2 : c_trans2) / h2;
+              const double *u = d[(k + 1) % 3], *v = d[(k + 2) % 3];
+              cross[k][0] = u[1] * v[2] - u[2] * v[1];
+              cross[k][1] = u[2] * v[0] - u[0] * v[2];
+              cross[k][2] = u[0] * v[1] - u[1] * v[0];
+            }
+          const double volume =
+            std::abs(d[0][0] * cross[0][0] + d[0][1] * cross[0][1] +
+                     d[0][2] * cross[0][2]);
+          double r2 = 0.;
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              const double area2 = cross[k][0] * cross[k][0] +
+                                   cross[k][1] * cross[k][1] +
+                                   cross[k][2] * cross[k][2];
+              const double h2 = volume * volume / std::max(area2, 1e-300);
+              r2 += (k == cell_axis[c] ? c_axial2 : c_trans2) /
+                    std::max(h2, 1e-300);
               min_h2 = std::min(min_h2, h2);
             }
           rate2 = std::max(rate2, r2);
@@ -320,8 +362,7 @@ namespace YarnImpact
                                        cells,
                                        displacement,
                                        force,
-                                       shared.yarn.failure,
-                                       failure_log_stretch,
+                                       failure_law,
                                        dissipated);
       force.compress(VectorOperation::add);
       projectile_speed      = std::abs(projectile.velocity());
@@ -396,6 +437,8 @@ namespace YarnImpact
       save_owned(out, force);
       out.tag("fe cells");
       out.put(cells.failed);
+      out.put(cells.damage);
+      out.put(cells.kappa);
       out.put(cells.log_stretch);
       out.put(cells.mean_log_stretch);
       out.put(cells.compaction);
@@ -420,6 +463,8 @@ namespace YarnImpact
       velocity.update_ghost_values();
       in.tag("fe cells");
       in.get_same_size(cells.failed, "failure state of the owned cells");
+      in.get_same_size(cells.damage, "fibre damage of the owned cells");
+      in.get_same_size(cells.kappa, "largest fibre stretch of the owned cells");
       in.get_same_size(cells.log_stretch, "fibre stretch of the owned cells");
       in.get_same_size(cells.mean_log_stretch,
                        "mean fibre stretch of the owned cells");
@@ -463,6 +508,33 @@ namespace YarnImpact
               "FE/Cells along the axis",
               "is too small: cells longer than the projectile radius cannot "
               "resolve the contact");
+      if (shared.yarn.failure &&
+          shared.yarn.failure_model ==
+            YarnImpact::Parameters::Yarn::FailureModel::progressive)
+        {
+          require(parameters.law == LawType::charmetant,
+                  "Yarn/Failure model",
+                  "= progressive needs FE/Constitutive law = Charmetant: it "
+                  "damages the fibre term 1/2 k_e I_e^2 of the energy, which "
+                  "the linear transversely isotropic law does not separate");
+          // Softening must not snap back in the longest cell: the final
+          // strain I_u = 2 G_f / (h k_e I_0) must lie above the onset I_0,
+          // i.e. G_f above the elastic energy per area h k_e I_0^2 / 2
+          // (doc/theory.md section 5).
+          const double h = shared.yarn.length / parameters.n_axial_cells /
+                           std::pow(2., parameters.global_refinements);
+          const double I_0   = std::log1p(shared.yarn.damage_onset_strain);
+          const double G_min = 0.5 * h * parameters.charmetant.k_e * I_0 * I_0;
+          std::ostringstream s;
+          s << "= " << shared.yarn.fracture_energy
+            << " J/m^2 is not above the elastic energy per unit area of a "
+            << h * 1e3 << " mm cell at the damage onset strain, " << G_min
+            << " J/m^2: its softening would snap back (raise it or refine "
+               "FE/Cells along the axis)";
+          require(shared.yarn.fracture_energy > G_min,
+                  "Yarn/Fracture energy",
+                  s.str());
+        }
       // The cell count is the memory estimate's, which also names the
       // parameter that makes it large.
       const MemoryEstimate size = memory_estimate(shared, parameters);

@@ -42,16 +42,31 @@ namespace YarnImpact
       o.contact_energy    = symmetry * global[2];
       o.dissipated_energy = symmetry * global[3];
 
-      double max_strain     = 0.;
-      unsigned int n_failed = 0;
+      // Broken: by the sudden criterion, or fibre damage 1 (a cell that
+      // keeps only its transverse response); eroded apart; damaged: fibre
+      // damage started (progressive), whatever became of the cell since.
+      double max_strain      = 0.;
+      unsigned int counts[3] = {0, 0, 0}; // failed, eroded, damaged
       for (unsigned int c = 0; c < cell_index.size(); ++c)
-        if (cells.failed[c])
-          ++n_failed;
-        else
-          max_strain = std::max(max_strain, std::expm1(cells.log_stretch[c]));
-      o.max_strain = Utilities::MPI::max(max_strain, communicator);
-      o.n_failed   = static_cast<unsigned long>(symmetry) *
-                   Utilities::MPI::sum(n_failed, communicator);
+        {
+          if (cells.damage[c] > 0.)
+            ++counts[2];
+          if (cells.failed[c] == CellState::eroded)
+            ++counts[1];
+          else if (cells.failed[c] == CellState::broken ||
+                   cells.damage[c] >= 1.)
+            ++counts[0];
+          else
+            max_strain = std::max(max_strain, std::expm1(cells.log_stretch[c]));
+        }
+      Utilities::MPI::sum(ArrayView<const unsigned int>(counts, 3),
+                          communicator,
+                          ArrayView<unsigned int>(counts, 3));
+      o.max_strain      = Utilities::MPI::max(max_strain, communicator);
+      const auto factor = static_cast<unsigned long>(symmetry);
+      o.n_failed        = factor * counts[0];
+      o.n_eroded        = factor * counts[1];
+      o.n_damaged       = factor * counts[2];
 
       // Station profile: maxima in one array, sums in another.
       const unsigned int n = n_stations;
@@ -151,9 +166,9 @@ namespace YarnImpact
         const_cast<std::vector<double> &>(initial_width) = profile.width;
       profile.initial_width = initial_width;
 
-      // Only a yarn with failed cells can be cut (and the check is
-      // collective: n_failed is the same on every rank).
-      o.cut_through = o.n_failed > 0 && yarn_cut_through();
+      // Only a yarn with failed or eroded cells can be cut (and the check
+      // is collective: the counts are the same on every rank).
+      o.cut_through = (o.n_failed > 0 || o.n_eroded > 0) && yarn_cut_through();
       return o;
     }
 
@@ -164,8 +179,10 @@ namespace YarnImpact
     {
       std::vector<unsigned int> failed(n_layers, 0);
       bool any = false;
+      // A layer is cut when none of its cells carries fibre stress:
+      // broken, eroded, or fully damaged.
       for (unsigned int c = 0; c < cell_index.size(); ++c)
-        if (cells.failed[c])
+        if (cells.failed[c] != CellState::active || cells.damage[c] >= 1.)
           {
             failed[std::min(cell_layer[c], n_layers - 1)] += 1;
             any = true;
@@ -200,7 +217,8 @@ namespace YarnImpact
                                      "cauchy_xz",
                                      "cauchy_yz",
                                      "failed",
-                                     "mpi_rank"};
+                                     "mpi_rank",
+                                     "damage"};
       const unsigned int n_fields = sizeof(names) / sizeof(names[0]);
       std::vector<Vector<float>> fields(n_fields, Vector<float>(n_cells));
       const float rank = Utilities::MPI::this_mpi_process(communicator);
@@ -220,6 +238,18 @@ namespace YarnImpact
               deformation_gradient(u, g, F);
               Invariants inv;
               law.stress(F, P, inv);
+              if constexpr (Law::separable_fibre_term)
+                if (cells.damage[c] > 0.)
+                  {
+                    // The stress the force loop uses: the damaged fibre
+                    // part out (cell_kernel.cc).
+                    const double I4 = F[0] * F[0] + F[3] * F[3] + F[6] * F[6];
+                    const double a  = cells.damage[c] * law.axial_modulus() *
+                                     inv.elongation / I4;
+                    P[0] -= a * F[0];
+                    P[3] -= a * F[3];
+                    P[6] -= a * F[6];
+                  }
               inv = charmetant_invariants(F);
               // Cauchy stress sigma = P F^T / J.
               const double J = internal::determinant(F);
@@ -251,6 +281,7 @@ namespace YarnImpact
             fields[k][id] = sums[k];
           fields[10][id] = cells.failed[c];
           fields[11][id] = rank;
+          fields[12][id] = cells.damage[c];
         }
 
       DataOut<3> data_out;

@@ -126,10 +126,12 @@ namespace YarnImpact
                         "node is Penalty x nodal surface area x penetration, "
                         "so the contact does not depend on the mesh.");
       prm.declare_entry("Friction coefficient",
-                        "0",
+                        "0.2",
                         Patterns::Double(),
                         "Coulomb friction coefficient between the projectile "
-                        "and the yarn [-].");
+                        "and the yarn [-]; the default is the DEM's (DEM/"
+                        "Projectile friction coefficient), so that both "
+                        "models of Model = both see the same contact.");
       prm.declare_entry("Damping ratio",
                         "0",
                         Patterns::Double(),

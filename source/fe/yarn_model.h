@@ -31,10 +31,11 @@ namespace YarnImpact
      * The FE yarn: Q1 hexahedra, 2x2x2 Gauss points, row-sum lumped mass,
      * explicit central difference driven by ImpactSimulation, penalty
      * contact with the rigid cylinder (ProjectileContact), cell failure at
-     * a longitudinal strain. The force loop (internal_forces()) works on
-     * pre-computed shape gradients and local indices into deal.II's
-     * distributed vectors. A template on the constitutive law, so that
-     * the law inlines into that loop (constitutive_law.h).
+     * a longitudinal strain, sudden or progressive (FailureLaw). The force loop
+     * (internal_forces()) works on pre-computed shape gradients and local
+     * indices into deal.II's distributed vectors. A template on the
+     * constitutive law, so that the law inlines into that loop
+     * (constitutive_law.h).
      *
      * Set-up, step phases and create_model() are in fe_model.cc;
      * observables and output in fe_observables.cc.
@@ -165,8 +166,9 @@ namespace YarnImpact
       std::vector<unsigned char> cell_axis;
       std::vector<unsigned int> cell_layer;
       std::vector<double> cell_volume;
-      /** ln(1 + failure strain): the failure test without expm1 per cell. */
-      double failure_log_stretch = 0.;
+      /** The failure law of the force loop (from Yarn/Failure, Failure
+       * strain, Failure model, Fracture energy). */
+      FailureLaw failure_law;
 
       // Owned nodes: local indices of their x, y, z dofs and their station.
       std::vector<std::array<unsigned int, 3>> nodes;

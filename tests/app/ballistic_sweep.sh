@@ -5,8 +5,11 @@
 # Physics checks: the yarn breaks at once at every velocity (cut through
 # before the longitudinal wave reflected at the clamps is back, 3.31 us),
 # and the residual velocity increases with the impact velocity, staying
-# below it. Regression record: the residual velocities of commit 0b7de27
-# (591.84, 790.36, 991.92 m/s) within 1 m/s.
+# below it. Regression record: the residual velocities within 1 m/s,
+# recorded on branch failure (commit 9d407ac): 590.91, 788.67, 988.48 m/s
+# (591.84, 790.36, 991.92 m/s at commit 0b7de27, before the FE projectile
+# friction became 0.2, the DEM's, and the stable step used the cell
+# altitudes; the two together take 0.9 to 3.4 m/s more).
 build=$1
 src=$2
 work=$(mktemp -d)
@@ -31,7 +34,7 @@ check("residual velocity increases with the impact velocity: %s" % vr,
       all(b > a for a, b in zip(vr, vr[1:])))
 check("residual velocity below the impact velocity",
       all(r < w for r, w in zip(vr, v)))
-for w, r, ref in zip(v, vr, [591.84, 790.36, 991.92]):
+for w, r, ref in zip(v, vr, [590.91, 788.67, 988.48]):
     check("regression: %g m/s keeps %.2f m/s (recorded %.2f)" % (w, r, ref),
           abs(r - ref) < 1.)
 for png in ["residual_velocity", "energy_absorbed", "first_break", "cut_through"]:

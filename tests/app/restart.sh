@@ -100,6 +100,28 @@ run 1 --restart fe.prm
 [ "$rc" -eq 0 ] || fail "fe restart: exit $rc: $(head -c 300 stderr)"
 same "fe restart" ref_fe fe history_fe.csv
 
+# --- FE with the progressive failure law, stopped while cells are being
+# damaged (30.5 us; damage, its history variable and the eroded/damaged
+# counts must come back).
+prog_prm() { # directory
+  printf 'set Symmetry = quarter\nsubsection Yarn\n  set Failure model = progressive\nend\n'
+  printf 'subsection Time\n  set End time = 34e-6\nend\n'
+  printf 'subsection Output\n  set Directory = %s\n  set Snapshot interval = 0\n' "$1"
+  printf '  set History interval = 0.1e-6\n  set Verbosity = quiet\nend\n'
+  printf 'subsection FE\n  set Cells along the axis = 40\nend\n'
+}
+prog_prm ref_prog > ref_prog.prm
+run 1 ref_prog.prm
+[ "$rc" -eq 0 ] || fail "progressive reference: exit $rc: $(head -c 300 stderr)"
+awk -F, 'NR > 1 && $15 > 0 {found = 1} END {exit !found}' ref_prog/history_fe.csv ||
+  fail "progressive reference: no failed cell by 34 us (the case no longer tests restarts through damage)"
+prog_prm prog > prog.prm
+YARN_IMPACT_SIGNAL_AT_ROW=305 run 1 prog.prm
+stopped "progressive signal"
+run 1 --restart prog.prm
+[ "$rc" -eq 0 ] || fail "progressive restart: exit $rc: $(head -c 300 stderr)"
+same "progressive restart" ref_prog prog history_fe.csv
+
 # --- FE: periodic checkpoints, then a full disk; restart from the last one.
 fe_prm ref_fe_long 4e-6 0 > ref_fe_long.prm
 run 1 ref_fe_long.prm

@@ -68,9 +68,14 @@ namespace YarnImpact
     /** Largest energy balance error of the history rows, as a fraction of
      * the initial energy [-]. */
     double max_energy_error = 0.;
-    /** Time of the first history row with a failed cell or truss [s], -1
-     * if none. */
+    /** Time of the first history row with a failed cell or truss, or a
+     * cell whose progressive fibre damage has started [s], -1 if none. */
     double first_failure_time = -1.;
+    /** Time of the first history row with an eroded FE cell [s], -1 if
+     * none (erosion is not failure: Observables::n_eroded). */
+    double first_erosion_time = -1.;
+    /** Eroded FE cells at the last history row, whole yarn [-]. */
+    unsigned long n_eroded = 0;
     /** Impact speed of the projectile at the end [m/s]. */
     double final_velocity = 0.;
     /** Time at which the yarn was cut through [s], -1 if it was not. */

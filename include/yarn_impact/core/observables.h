@@ -90,8 +90,19 @@ namespace YarnImpact
     double dissipated_energy = 0.;
     /** Largest longitudinal strain in the yarn [-]. */
     double max_strain = 0.;
-    /** Failed FE cells or broken DEM trusses, whole yarn [-]. */
+    /** Failed FE cells (broken by the sudden criterion, or whose fibre
+     * damage reached 1) or broken DEM trusses, whole yarn [-]. Eroded
+     * cells are not counted here (n_eroded). */
     unsigned long n_failed = 0;
+    /** FE cells removed because they were crushed below J = 0.2, inverted
+     * or gave a non-finite energy (erosion, not material failure), whole
+     * yarn [-]; always 0 in the DEM. */
+    unsigned long n_eroded = 0;
+    /** FE cells whose fibre damage has started (0 < d, broken cells
+     * included) with the progressive failure model, whole yarn [-]; 0 in
+     * the DEM and with the sudden model, where failure is all or nothing.
+     * The first damaged cell is the FE's first fibre break. */
+    unsigned long n_damaged = 0;
     /** Whether the yarn is cut through: no load path left between the
      * clamps (the run may stop then). */
     bool cut_through = false;

@@ -66,6 +66,28 @@ namespace YarnImpact
       double failure_strain = 0.0452;
       /** Whether failure (broken trusses, failed cells) is modelled. */
       bool failure = true;
+      /** How an FE cell fails (the DEM's trusses always break at once at
+       * failure_strain). */
+      enum class FailureModel
+      {
+        /** The paper's criterion: a cell whose largest Gauss-point
+         * ln(lambda_f) passes ln(1 + failure_strain) drops all its stress
+         * in one step. */
+        sudden,
+        /** Crack-band softening of the fibre term between the onset at
+         * failure_strain and a final strain set by fracture_energy and the
+         * cell's length along the fibre (doc/theory.md section 5). */
+        progressive
+      };
+      /** The FE failure model. */
+      FailureModel failure_model = FailureModel::sudden;
+      /** Largest Gauss-point fibre strain of an FE cell at which its
+       * progressive fibre damage starts [-] (the sudden model and the DEM
+       * use failure_strain). */
+      double damage_onset_strain = 0.0347;
+      /** Energy dissipated per unit area of a crack across the yarn by the
+       * progressive failure model, G_f [J/m^2]. */
+      double fracture_energy = 5.41e4;
 
       /** Area of the elliptical section, \f$\pi a_y a_z\f$ [m^2]. */
       double

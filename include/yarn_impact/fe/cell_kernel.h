@@ -6,6 +6,7 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace YarnImpact
@@ -85,6 +86,114 @@ namespace YarnImpact
         }
     }
 
+    /** What has become of a cell (CellData::state). */
+    enum CellState : unsigned char
+    {
+      /** Carries its stress (possibly with fibre damage). */
+      active = 0,
+      /** Broken by the sudden criterion: carries nothing from then on. */
+      broken = 1,
+      /** Removed because crushed below J = 0.2, inverted or with a
+       * non-finite energy: erosion, a numerical removal, not a material
+       * failure (counted apart, Observables::n_eroded). */
+      eroded = 2
+    };
+
+    /**
+     * The fibre-failure law of the force loop (doc/theory.md section 5).
+     *
+     * - sudden: the paper's criterion. A cell whose largest Gauss-point
+     *   ln(lambda_f) passes onset_log_stretch breaks: it carries no
+     *   force from then on and its strain energy is counted as dissipated.
+     * - progressive: crack-band softening of the fibre term
+     *   1/2 k_e I_e^2 of the energy. The history variable kappa is the
+     *   largest ln(lambda_f) a cell's Gauss points have reached; above
+     *   the onset I_0 the fibre Kirchhoff stress follows the linear
+     *   envelope k_e I_0 (I_u - kappa)/(I_u - I_0) down to zero at
+     *   I_u = 2 G_f / (h k_e I_0), h the cell's reference length along
+     *   the fibre, so that a band one cell long dissipates G_f per unit
+     *   area whatever h. The damage d = 1 - envelope/(k_e kappa) scales
+     *   the fibre term only (the law's energy must separate it:
+     *   Law::separable_fibre_term); the compaction and distortion terms
+     *   stay, because the broken fibres still fill the section and are
+     *   still pressed by the projectile (doc/fe-model.md section 4).
+     *
+     * Both erode cells crushed below J = 0.2, inverted or with a
+     * non-finite energy (CellState::eroded).
+     */
+    struct FailureLaw
+    {
+      /** Which law, none for a yarn that does not fail (nor erode). */
+      enum class Kind
+      {
+        none,
+        sudden,
+        progressive
+      };
+      Kind kind = Kind::none;
+      /** I_0 = ln(1 + failure strain) [-]. */
+      double onset_log_stretch = 0.;
+      /** G_f, energy per unit crack area [J/m^2] (progressive). */
+      double fracture_energy = 0.;
+      /** k_e of the separable fibre term 1/2 k_e I_e^2 [Pa] (progressive).
+       */
+      double fibre_modulus = 0.;
+
+      /** I_u = 2 G_f / (h k_e I_0) of a cell @p h [m] long along the fibre:
+       * the ln(lambda_f) at which its fibre stress is gone [-]. */
+      double
+      final_log_stretch(const double h) const
+      {
+        return 2. * fracture_energy / (h * fibre_modulus * onset_log_stretch);
+      }
+
+      /** The damage [0, 1] of a cell @p h [m] long at the history variable
+       * @p kappa (largest ln(lambda_f) reached) [-]. */
+      double
+      damage(const double kappa, const double h) const
+      {
+        if (kappa <= onset_log_stretch)
+          return 0.;
+        const double I_u = final_log_stretch(h);
+        if (kappa >= I_u)
+          return 1.;
+        return 1. - onset_log_stretch * (I_u - kappa) /
+                      (kappa * (I_u - onset_log_stretch));
+      }
+    };
+
+    /**
+     * The energy [J] that the progressive law dissipates in a cell whose
+     * history variable grows from @p kappa_old to @p kappa_new [-], with
+     * the undamaged fibre energy @p fibre_energy [J] at kappa_new and the
+     * cell length @p h [m] along the fibre. Along the envelope the
+     * dissipation per unit volume is 1/2 k_e kappa^2 dd =
+     * 1/2 k_e I_0 I_u / (I_u - I_0) dkappa, a constant rate (doc/theory.md
+     * section 5.3), so the increment is that rate times the part of
+     * [kappa_old, kappa_new] inside [I_0, I_u], times the volume of the
+     * band. The volume is fibre_energy / (1/2 k_e kappa_new^2): the whole
+     * cell when its strain is uniform (then the crack dissipates G_f per
+     * unit area exactly, whatever the step), less when its Gauss points
+     * are stretched less than the largest, whose fibre energy the damage
+     * then removes in proportion, so that the energy balance closes.
+     */
+    inline double
+    dissipation_increment(const FailureLaw &law,
+                          const double kappa_old,
+                          const double kappa_new,
+                          const double fibre_energy,
+                          const double h)
+    {
+      const double I_0 = law.onset_log_stretch;
+      const double I_u = law.final_log_stretch(h);
+      const double lo  = std::max(kappa_old, I_0);
+      const double hi  = std::min(kappa_new, I_u);
+      if (hi <= lo)
+        return 0.;
+      return fibre_energy * I_0 * I_u * (hi - lo) /
+             ((I_u - I_0) * kappa_new * kappa_new);
+    }
+
     /**
      * The owned cells as the internal-force loop sees them, cell c at
      * c * n_cell_dofs, c * grad_size, c * n_q in the flat arrays, and what
@@ -98,8 +207,19 @@ namespace YarnImpact
       std::vector<double> grads;
       /** Gauss weights times Jacobians [m^3]. */
       std::vector<double> JxW;
-      /** 1 once the cell has broken or been eroded: it carries no force. */
+      /** A CellState: not active once the cell has broken (sudden) or
+       * been eroded; it then carries no force. */
       std::vector<unsigned char> failed;
+      /** Fibre damage d in [0, 1] (progressive failure): the fibre term of
+       * the energy is multiplied by 1 - d. Irreversible. */
+      std::vector<double> damage;
+      /** History variable of the damage: the largest ln(lambda_f) any
+       * Gauss point of the cell has reached [-]. */
+      std::vector<double> kappa;
+      /** Reference length of the cell along the fibre [m] (the crack
+       * band's width). */
+      std::vector<double> fibre_length;
+
       /** Largest ln(lambda_f) over the Gauss points: the strains are
        * expm1() of it, taken only where they are reported. */
       std::vector<double> log_stretch;
@@ -117,13 +237,15 @@ namespace YarnImpact
     };
 
     /**
-     * The internal forces of all unbroken cells of @p cells at the
+     * The internal forces of all active cells of @p cells at the
      * displacement @p displacement [m] (ghosts up to date): subtracts each
      * cell's forces [N] from @p force's local entries (the caller
-     * compresses) and returns the strain energy [J] of the cells. With
-     * @p failure, a cell breaks when its largest ln(lambda_f) exceeds
-     * @p failure_log_stretch, and is eroded when inverted or crushed; its
-     * strain energy [J] goes to @p dissipated.
+     * compresses) and returns the strain energy [J] of the cells. The
+     * failure law @p failure breaks, damages and erodes cells (FailureLaw);
+     * the energy they release [J] goes to @p dissipated: the strain energy
+     * of a broken or eroded cell, and for fibre damage the law's
+     * dissipation along its envelope (dissipation_increment()), so that
+     * the energy balance closes.
      *
      * Instantiated for each law of YARN_IMPACT_FE_FOR_EACH_LAW.
      */
@@ -134,8 +256,7 @@ namespace YarnImpact
       CellData &cells,
       const dealii::LinearAlgebra::distributed::Vector<double> &displacement,
       dealii::LinearAlgebra::distributed::Vector<double> &force,
-      const bool failure,
-      const double failure_log_stretch,
+      const FailureLaw &failure,
       double &dissipated);
   } // namespace FE
 } // namespace YarnImpact

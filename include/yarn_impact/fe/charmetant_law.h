@@ -26,6 +26,10 @@ namespace YarnImpact
       /** The force loop may call stress_kernel() with Double4 (the
        * constitutive-law contract, constitutive_law.h). */
       static constexpr bool vectorised = true;
+      /** The energy is 1/2 k_e I_e^2 (k_e = axial_modulus()) plus terms of
+       * the section alone, so the progressive failure law can damage the
+       * fibre term by itself (constitutive_law.h, cell_kernel.h). */
+      static constexpr bool separable_fibre_term = true;
 
       /** @param parameters the moduli @param density [kg/m^3] */
       CharmetantLaw(const CharmetantParameters &parameters,

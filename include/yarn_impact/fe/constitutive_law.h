@@ -43,6 +43,13 @@ namespace YarnImpact
      *   four Gauss points at once (the same body as stress() is best, so
      *   that the scalar tests cover it); false and the force loop calls
      *   stress() one Gauss point at a time.
+     * - `static constexpr bool separable_fibre_term`: true when the
+     *   energy is 1/2 axial_modulus() I_e^2 plus terms that do not depend
+     *   on I_e, and the stress's fibre part is therefore
+     *   (axial_modulus() I_e / I4) F M (x) M: the progressive failure law
+     *   (FailureLaw in cell_kernel.h) then damages that part alone,
+     *   outside the law. False and `Yarn/Failure model = progressive` is
+     *   refused with this law.
      *
      * The law must be copyable (axial_properties() keeps a copy).
      * check_law_contract() states this at compile time.
@@ -91,6 +98,9 @@ namespace YarnImpact
                     "a law needs a density [kg/m^3]");
       static_assert(std::is_same_v<decltype(Law::vectorised), const bool>,
                     "a law says whether it has a Double4 stress_kernel");
+      static_assert(
+        std::is_same_v<decltype(Law::separable_fibre_term), const bool>,
+        "a law says whether its fibre term 1/2 k_e I_e^2 is separable");
       static_assert(std::is_copy_constructible_v<Law>,
                     "a law must be copyable");
       return true;

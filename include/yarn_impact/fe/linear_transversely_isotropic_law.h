@@ -20,6 +20,10 @@ namespace YarnImpact
       /** Scalar only: the force loop calls stress() one Gauss point at a
        * time (the constitutive-law contract, constitutive_law.h). */
       static constexpr bool vectorised = false;
+      /** The fibre strain is coupled to the others through C : E (and
+       * shear G_LT): no separable fibre term, so the progressive failure
+       * law is refused with this law (FE::validate()). */
+      static constexpr bool separable_fibre_term = false;
 
       /** @param parameters the moduli @param density [kg/m^3] */
       LinearTransverselyIsotropicLaw(const LinearParameters &parameters,

@@ -55,8 +55,9 @@ namespace YarnImpact
       Contact::LawType law = Contact::LawType::penalty_coulomb;
       /** Penalty: contact pressure per unit penetration [Pa/m]. */
       double penalty = 5e13;
-      /** Coulomb friction coefficient between projectile and yarn [-]. */
-      double friction = 0.;
+      /** Coulomb friction coefficient between projectile and yarn [-];
+       * the DEM's projectile friction by default. */
+      double friction = 0.2;
       /** Viscous damping of the contact, fraction of critical [-]. */
       double damping_ratio = 0.;
       /** Tangential stiffness over the normal one, for a law with a
