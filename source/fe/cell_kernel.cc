@@ -201,6 +201,7 @@ namespace YarnImpact
             u[k] = displacement.local_element(dofs[k]);
           const CellResult r        = integrate(law, u, grad, JxW, f);
           const double cell_energy  = r.energy;
+          cells.energy[c]           = cell_energy;
           cells.log_stretch[c]      = r.max_elongation;
           cells.mean_log_stretch[c] = r.sum_elongation / n_q;
           cells.compaction[c]       = r.max_compaction;

@@ -23,6 +23,9 @@ namespace YarnImpact
       nodes.push_back(dofs);
       area.push_back(node_area);
       mass.push_back(node_mass);
+      reaction.push_back(0.);
+      penalty_energy.push_back(0.);
+      dissipated.push_back(0.);
     }
 
 
@@ -40,24 +43,24 @@ namespace YarnImpact
     }
 
 
-    double
+    void
     ProjectileContact::add_forces(
       const Projectile &projectile,
       const std::vector<double> &reference_coordinate,
       const dealii::LinearAlgebra::distributed::Vector<double> &displacement,
       const dealii::LinearAlgebra::distributed::Vector<double> &velocity,
       dealii::LinearAlgebra::distributed::Vector<double> &force,
-      const double dt,
-      double &dissipated)
+      const double dt)
     {
       const auto &contact = parameters;
       const double R      = projectile.radius();
       const double yc     = projectile.axis_position();
       const double vp     = projectile.velocity();
-      double reaction = 0., energy = 0.;
       for (unsigned int k = 0; k < nodes.size(); ++k)
         {
-          const auto &node = nodes[k];
+          const auto &node  = nodes[k];
+          reaction[k]       = 0.;
+          penalty_energy[k] = 0.;
           const double px =
             reference_coordinate[node[0]] + displacement.local_element(node[0]);
           const double py =
@@ -82,7 +85,7 @@ namespace YarnImpact
                 2. * contact.damping_ratio * std::sqrt(mass[k] * stiffness);
               const double fd = std::max(-c * vn, -fn);
               fn += fd;
-              dissipated += -fd * vn * dt;
+              dissipated[k] += -fd * vn * dt;
             }
           double ft[3] = {0., 0., 0.};
           if (contact.friction > 0.)
@@ -99,17 +102,42 @@ namespace YarnImpact
                            : 0.;
               for (unsigned int d = 0; d < 3; ++d)
                 ft[d] = scale * vt[d];
-              dissipated +=
+              dissipated[k] +=
                 -(ft[0] * vt[0] + ft[1] * vt[1] + ft[2] * vt[2]) * dt;
             }
           force.local_element(node[0]) += fn * nx + ft[0];
           force.local_element(node[1]) += fn * ny + ft[1];
           force.local_element(node[2]) += ft[2];
-          reaction -= fn * ny + ft[1];
-          energy += 0.5 * stiffness * gap * gap;
+          reaction[k]       = -(fn * ny + ft[1]);
+          penalty_energy[k] = 0.5 * stiffness * gap * gap;
         }
-      penalty_energy = energy;
-      return reaction;
+    }
+
+
+    void
+    ProjectileContact::add_reactions(ReproducibleSum &sum,
+                                     const unsigned int i) const
+    {
+      for (const double r : reaction)
+        sum.add(i, r);
+    }
+
+
+    void
+    ProjectileContact::add_energies(ReproducibleSum &sum,
+                                    const unsigned int i) const
+    {
+      for (const double e : penalty_energy)
+        sum.add(i, e);
+    }
+
+
+    void
+    ProjectileContact::add_dissipated(ReproducibleSum &sum,
+                                      const unsigned int i) const
+    {
+      for (const double d : dissipated)
+        sum.add(i, d);
     }
   } // namespace FE
 } // namespace YarnImpact

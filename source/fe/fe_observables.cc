@@ -1,4 +1,5 @@
 #include <yarn_impact/core/output_file.h>
+#include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/fe/constitutive_law.h>
 
 #include <deal.II/base/mpi.h>
@@ -24,46 +25,50 @@ namespace YarnImpact
     YarnModel<Law>::observables() const
     {
       Observables o;
-      double kinetic = 0.;
+      // Every sum over the ranks is a ReproducibleSum of per-dof, per-cell
+      // and per-node terms, so that the history does not depend on the
+      // partition: sums 0-3 are the energies, then the station sums.
+      const unsigned int n = n_stations;
+      ReproducibleSum sums(4 + 6 * n);
       {
-        const unsigned int n  = velocity.locally_owned_size();
-        const double *const v = velocity.begin();
-        const double *const m = lumped_mass.begin();
-        for (unsigned int i = 0; i < n; ++i)
-          kinetic += 0.5 * m[i] * v[i] * v[i];
+        const unsigned int n_owned = velocity.locally_owned_size();
+        const double *const v      = velocity.begin();
+        const double *const m      = lumped_mass.begin();
+        for (unsigned int i = 0; i < n_owned; ++i)
+          sums.add(0, 0.5 * m[i] * v[i] * v[i]);
       }
-      double local[4] = {kinetic, elastic_energy, contact.energy(), dissipated};
-      double global[4];
-      Utilities::MPI::sum(ArrayView<const double>(local, 4),
-                          communicator,
-                          ArrayView<double>(global, 4));
-      o.kinetic_energy    = symmetry * global[0];
-      o.elastic_energy    = symmetry * global[1];
-      o.contact_energy    = symmetry * global[2];
-      o.dissipated_energy = symmetry * global[3];
-
       double max_strain     = 0.;
       unsigned int n_failed = 0;
-      for (unsigned int c = 0; c < cell_index.size(); ++c)
+      for (const unsigned int c : owned_cells)
         if (cells.failed[c])
-          ++n_failed;
+          {
+            ++n_failed;
+            // The energy the cell released when it failed (none if it was
+            // eroded with a non-finite energy).
+            if (std::isfinite(cells.energy[c]))
+              sums.add(3, cells.energy[c]);
+          }
         else
-          max_strain = std::max(max_strain, std::expm1(cells.log_stretch[c]));
+          {
+            max_strain = std::max(max_strain, std::expm1(cells.log_stretch[c]));
+            sums.add(1, cells.energy[c]);
+          }
+      contact.add_energies(sums, 2);
+      contact.add_dissipated(sums, 3);
       o.max_strain = Utilities::MPI::max(max_strain, communicator);
       o.n_failed   = static_cast<unsigned long>(symmetry) *
                    Utilities::MPI::sum(n_failed, communicator);
 
-      // Station profile: maxima in one array, sums in another.
-      const unsigned int n = n_stations;
+      // Station profile: maxima in one array, sums in the other.
       // The station's strain is the volume average over the cells that
       // touch its node layer: the yarn's strain T / EA. Fibres of one
       // section are not coupled in longitudinal shear (G_LT = 0), so the
       // largest strain in a section can be well above it.
       std::vector<double> maxima(3 * n, -std::numeric_limits<double>::max());
-      // Sums: |x|, count, strain x volume, volume, volume x z^2 and
-      // deformed volume per station.
-      std::vector<double> sums(6 * n, 0.);
-      for (unsigned int c = 0; c < cell_index.size(); ++c)
+      // Sums 4 + (0-5) n + s: |x|, count, strain x volume, volume,
+      // volume x z^2 and deformed volume per station s.
+      const unsigned int st = 4;
+      for (const unsigned int c : owned_cells)
         {
           if (cells.failed[c])
             continue;
@@ -108,11 +113,12 @@ namespace YarnImpact
               const unsigned int s = static_cast<unsigned int>(std::round(
                 std::abs(reference_coordinate[dofs[3 * a]]) / station_spacing));
               // Each cell has four vertices on each of its two layers.
-              sums[2 * n + s] +=
-                0.25 * cell_volume[c] * std::expm1(cells.mean_log_stretch[c]);
-              sums[3 * n + s] += 0.25 * cell_volume[c];
-              sums[4 * n + s] += 0.25 * vz2;
-              sums[5 * n + s] += 0.25 * vol;
+              sums.add(st + 2 * n + s,
+                       0.25 * cell_volume[c] *
+                         std::expm1(cells.mean_log_stretch[c]));
+              sums.add(st + 3 * n + s, 0.25 * cell_volume[c]);
+              sums.add(st + 4 * n + s, 0.25 * vz2);
+              sums.add(st + 5 * n + s, 0.25 * vol);
             }
         }
       for (unsigned int k = 0; k < nodes.size(); ++k)
@@ -126,11 +132,15 @@ namespace YarnImpact
           maxima[s] = std::max(maxima[s], -displacement.local_element(node[1]));
           maxima[n + s]     = std::max(maxima[n + s], z);
           maxima[2 * n + s] = std::max(maxima[2 * n + s], -z);
-          sums[s] += std::abs(x);
-          sums[n + s] += 1.;
+          sums.add(st + s, std::abs(x));
+          sums.add(st + n + s, 1.);
         }
       Utilities::MPI::max(maxima, communicator, maxima);
-      Utilities::MPI::sum(sums, communicator, sums);
+      const std::vector<double> total = sums.sum(communicator);
+      o.kinetic_energy                = symmetry * total[0];
+      o.elastic_energy                = symmetry * total[1];
+      o.contact_energy                = symmetry * total[2];
+      o.dissipated_energy             = symmetry * total[3];
 
       const bool quarter =
         shared.general.symmetry == YarnImpact::Parameters::Symmetry::quarter;
@@ -138,14 +148,15 @@ namespace YarnImpact
       profile.resize(n);
       for (unsigned int s = 0; s < n; ++s)
         {
-          profile.position[s] = sums[s] / std::max(sums[n + s], 1.);
+          const double *const t = &total[st];
+          profile.position[s]   = t[s] / std::max(t[n + s], 1.);
           profile.axial_strain[s] =
-            sums[2 * n + s] / std::max(sums[3 * n + s], 1e-300);
+            t[2 * n + s] / std::max(t[3 * n + s], 1e-300);
           profile.deflection[s] = maxima[s];
           profile.width[s] =
             quarter ? 2. * maxima[n + s] : maxima[n + s] + maxima[2 * n + s];
           profile.rms_width[s] =
-            4. * std::sqrt(sums[4 * n + s] / std::max(sums[5 * n + s], 1e-300));
+            4. * std::sqrt(t[4 * n + s] / std::max(t[5 * n + s], 1e-300));
         }
       if (initial_width[0] == 0.)
         const_cast<std::vector<double> &>(initial_width) = profile.width;
@@ -164,7 +175,7 @@ namespace YarnImpact
     {
       std::vector<unsigned int> failed(n_layers, 0);
       bool any = false;
-      for (unsigned int c = 0; c < cell_index.size(); ++c)
+      for (const unsigned int c : owned_cells)
         if (cells.failed[c])
           {
             failed[std::min(cell_layer[c], n_layers - 1)] += 1;
@@ -204,7 +215,7 @@ namespace YarnImpact
       const unsigned int n_fields = sizeof(names) / sizeof(names[0]);
       std::vector<Vector<float>> fields(n_fields, Vector<float>(n_cells));
       const float rank = Utilities::MPI::this_mpi_process(communicator);
-      for (unsigned int c = 0; c < cell_index.size(); ++c)
+      for (const unsigned int c : owned_cells)
         {
           const unsigned int id    = cell_index[c];
           const unsigned int *dofs = &cells.dofs[c * n_cell_dofs];

@@ -107,6 +107,11 @@ namespace YarnImpact
       std::vector<double> mean_log_stretch;
       /** Largest |I_tc| over the Gauss points (stable time step). */
       std::vector<double> compaction;
+      /** Strain energy [J] at the last evaluation; a failed cell keeps the
+       * one it released when it failed. The energies are summed from these
+       * per-cell terms (ReproducibleSum), so that the sums do not depend on
+       * which rank holds which cell. */
+      std::vector<double> energy;
 
       /** Number of cells. */
       unsigned int
@@ -119,8 +124,9 @@ namespace YarnImpact
     /**
      * The internal forces of all unbroken cells of @p cells at the
      * displacement @p displacement [m] (ghosts up to date): subtracts each
-     * cell's forces [N] from @p force's local entries (the caller
-     * compresses) and returns the strain energy [J] of the cells. With
+     * cell's forces [N] from @p force's local entries, cell after cell in
+     * the order of @p cells, records each cell's strain energy [J] in
+     * CellData::energy and returns their sum. With
      * @p failure, a cell breaks when its largest ln(lambda_f) exceeds
      * @p failure_log_stretch, and is eroded when inverted or crushed; its
      * strain energy [J] goes to @p dissipated.

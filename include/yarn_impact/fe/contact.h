@@ -2,6 +2,7 @@
 #define yarn_impact_fe_contact_h
 
 #include <yarn_impact/core/projectile.h>
+#include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/fe/parameters.h>
 
 #include <deal.II/lac/la_parallel_vector.h>
@@ -51,28 +52,36 @@ namespace YarnImpact
       /**
        * Add the contact forces [N] on the nodes to @p force (owned
        * entries) at the current positions (@p reference_coordinate [m]
-       * plus @p displacement [m]) and velocities [m/s]; the damping and
-       * friction work over the step @p dt [s] is added to
-       * @p dissipated [J]. Returns the force of this rank's nodes on the
-       * projectile along y [N] (not summed over ranks, not scaled by the
-       * symmetry).
+       * plus @p displacement [m]) and velocities [m/s]. Each node keeps
+       * its force on the projectile and its penalty energy, and adds its
+       * damping and friction work over the step @p dt [s] to its own
+       * total: per-node terms, so that their sums over the ranks can be
+       * taken independently of the partition (add_reactions() and the
+       * like).
        */
-      double
+      void
       add_forces(
         const Projectile &projectile,
         const std::vector<double> &reference_coordinate,
         const dealii::LinearAlgebra::distributed::Vector<double> &displacement,
         const dealii::LinearAlgebra::distributed::Vector<double> &velocity,
         dealii::LinearAlgebra::distributed::Vector<double> &force,
-        const double dt,
-        double &dissipated);
+        const double dt);
 
-      /** Penalty energy [J] of this rank's nodes at the last add_forces(). */
-      double
-      energy() const
-      {
-        return penalty_energy;
-      }
+      /** Add the force of each node on the projectile along y [N], at the
+       * last add_forces(), to sum @p i of @p sum. */
+      void
+      add_reactions(ReproducibleSum &sum, const unsigned int i) const;
+
+      /** Add the penalty energy of each node [J], at the last
+       * add_forces(), to sum @p i of @p sum. */
+      void
+      add_energies(ReproducibleSum &sum, const unsigned int i) const;
+
+      /** Add the damping and friction work of each node so far [J] to
+       * sum @p i of @p sum. */
+      void
+      add_dissipated(ReproducibleSum &sum, const unsigned int i) const;
 
     private:
       const ContactParameters parameters;
@@ -82,7 +91,10 @@ namespace YarnImpact
       std::vector<double> area;
       /** Lumped mass of each node [kg]. */
       std::vector<double> mass;
-      double penalty_energy = 0.;
+      /** Force of each node on the projectile along y [N], penalty energy
+       * [J] (both at the last add_forces()) and damping and friction work
+       * so far [J]. */
+      std::vector<double> reaction, penalty_energy, dissipated;
     };
   } // namespace FE
 } // namespace YarnImpact
