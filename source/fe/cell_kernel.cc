@@ -263,11 +263,14 @@ namespace YarnImpact
                       failure.damage(max_Ie, cells.fibre_length[c]);
                     // What the law dissipates: the exact integral along
                     // its envelope (d only grows: irreversible).
-                    dissipated += dissipation_increment(failure,
-                                                        cells.kappa[c],
-                                                        max_Ie,
-                                                        fibre_energy,
-                                                        cells.fibre_length[c]);
+                    const double released =
+                      dissipation_increment(failure,
+                                            cells.kappa[c],
+                                            max_Ie,
+                                            fibre_energy,
+                                            cells.fibre_length[c]);
+                    dissipated += released;
+                    cells.dissipated[c] += released;
                     cells.kappa[c]  = max_Ie;
                     cells.damage[c] = std::max(cells.damage[c], d);
                   }
@@ -275,6 +278,7 @@ namespace YarnImpact
               }
           const CellResult r = integrate(law, u, grad, JxW, fibre_damage, f);
           const double cell_energy  = r.energy;
+          cells.energy[c]           = cell_energy;
           cells.log_stretch[c]      = r.max_elongation;
           cells.mean_log_stretch[c] = r.sum_elongation / n_q;
           cells.compaction[c]       = r.max_compaction;
@@ -285,6 +289,7 @@ namespace YarnImpact
               // elastic energy is released (counted as dissipated).
               cells.failed[c] = CellState::broken;
               dissipated += cell_energy;
+              cells.dissipated[c] += cell_energy;
               continue;
             }
           if (fails && (!std::isfinite(cell_energy) || r.min_J < 0.2))
@@ -298,7 +303,10 @@ namespace YarnImpact
               // instead on the NaN or on the energy error.
               cells.failed[c] = CellState::eroded;
               if (std::isfinite(cell_energy))
-                dissipated += cell_energy;
+                {
+                  dissipated += cell_energy;
+                  cells.dissipated[c] += cell_energy;
+                }
               continue;
             }
           energy += cell_energy;

@@ -26,6 +26,9 @@ namespace YarnImpact
       mass.push_back(node_mass);
       history.insert(history.end(), 3, 0.);
       touching.push_back(0);
+      reaction.push_back(0.);
+      stored_energy.push_back(0.);
+      dissipated.push_back(0.);
     }
 
 
@@ -61,21 +64,19 @@ namespace YarnImpact
     }
 
 
-    double
+    void
     ProjectileContact::add_forces(
       const Projectile &projectile,
       const std::vector<double> &reference_coordinate,
       const dealii::LinearAlgebra::distributed::Vector<double> &displacement,
       const dealii::LinearAlgebra::distributed::Vector<double> &velocity,
       dealii::LinearAlgebra::distributed::Vector<double> &force,
-      const double dt,
-      double &dissipated)
+      const double dt)
     {
       // A surface node touches within the projectile's radius.
       const double R  = projectile.radius();
       const double yc = projectile.axis_position();
       const double vp = projectile.velocity();
-      double reaction = 0., energy = 0.;
       // The law is chosen once per call; the loop over the nodes is
       // instantiated for each law.
       Contact::with_contact_law(parameters.law, [&](auto tag) {
@@ -89,6 +90,8 @@ namespace YarnImpact
             const double py = reference_coordinate[node[1]] +
                               displacement.local_element(node[1]);
             double delta, n[3];
+            reaction[k]      = 0.;
+            stored_energy[k] = 0.;
             if (!Contact::projectile_overlap(px, py, yc, R, delta, n))
               {
                 if constexpr (history_size > 0)
@@ -111,16 +114,41 @@ namespace YarnImpact
             Contact::relative_to_projectile(v, vp, vr);
             const Law law(node_constants(k));
             double f[3];
-            Contact::contact_force(law, delta, n, vr, dt, xi, f, dissipated);
+            Contact::contact_force(law, delta, n, vr, dt, xi, f, dissipated[k]);
             force.local_element(node[0]) += f[0];
             force.local_element(node[1]) += f[1];
             force.local_element(node[2]) += f[2];
-            reaction -= f[1];
-            energy += law.energy(delta, xi);
+            reaction[k]      = -f[1];
+            stored_energy[k] = law.energy(delta, xi);
           }
       });
-      stored_energy = energy;
-      return reaction;
+    }
+
+
+    void
+    ProjectileContact::add_reactions(ReproducibleSum &sum,
+                                     const unsigned int i) const
+    {
+      for (const double r : reaction)
+        sum.add(i, r);
+    }
+
+
+    void
+    ProjectileContact::add_energies(ReproducibleSum &sum,
+                                    const unsigned int i) const
+    {
+      for (const double e : stored_energy)
+        sum.add(i, e);
+    }
+
+
+    void
+    ProjectileContact::add_dissipated(ReproducibleSum &sum,
+                                      const unsigned int i) const
+    {
+      for (const double d : dissipated)
+        sum.add(i, d);
     }
   } // namespace FE
 } // namespace YarnImpact

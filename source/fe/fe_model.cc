@@ -1,5 +1,6 @@
 #include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/core/projectile.h>
+#include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/fe/constitutive_law.h>
 #include <yarn_impact/fe/fe_model.h>
 #include <yarn_impact/fe/yarn_mesh.h>
@@ -96,10 +97,30 @@ namespace YarnImpact
       VectorType area;
       area.reinit(owned, relevant, communicator);
 
+      // The force loop visits the owned and the ghost cells, in one global
+      // order (by CellId). Every owned dof then gets the forces of all its
+      // cells from its own rank, added in the same order whatever the
+      // partition, and nothing is added across ranks (no compress): with
+      // compress(add), the partial sums of the ranks sharing a dof would be
+      // added in another order than a serial loop's, and the histories
+      // would depend on the number of ranks. Ghost cells are the vertex
+      // neighbours of the owned cells, which is all that touch an owned
+      // dof (checked below). The masses and areas are summed the same way.
+      std::vector<typename DoFHandler<3>::active_cell_iterator> loop_cells;
       for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          loop_cells.push_back(cell);
+      std::sort(loop_cells.begin(),
+                loop_cells.end(),
+                [](const auto &a, const auto &b) { return a->id() < b->id(); });
+      // The owned cells' masses added by compress(add), for the check.
+      VectorType mass_check;
+      mass_check.reinit(owned, relevant, communicator);
+
+      for (const auto &cell : loop_cells)
         {
-          if (!cell->is_locally_owned())
-            continue;
+          if (cell->is_locally_owned())
+            owned_cells.push_back(cell_index.size());
           fe_values.reinit(typename Triangulation<3>::cell_iterator(cell));
           cell_index.push_back(cell->active_cell_index());
           double x_lo = std::numeric_limits<double>::max(), x_hi = -x_lo;
@@ -116,6 +137,8 @@ namespace YarnImpact
                   cells.dofs.push_back(local);
                   reference_coordinate[local] = cell->vertex(a)[d];
                   lumped_mass.local_element(local) += node_mass;
+                  if (cell->is_locally_owned())
+                    mass_check.local_element(local) += node_mass;
                 }
               x_lo = std::min(x_lo, cell->vertex(a)[0]);
               x_hi = std::max(x_hi, cell->vertex(a)[0]);
@@ -176,14 +199,27 @@ namespace YarnImpact
                   }
               }
         }
-      lumped_mass.compress(VectorOperation::add);
-      area.compress(VectorOperation::add);
-      const unsigned int n_owned_cells = cell_index.size();
-      cells.failed.assign(n_owned_cells, 0);
-      cells.log_stretch.assign(n_owned_cells, 0.);
-      cells.mean_log_stretch.assign(n_owned_cells, 0.);
-      cells.damage.assign(n_owned_cells, 0.);
-      cells.kappa.assign(n_owned_cells, 0.);
+      // The ghost entries hold partial sums: only the owned ones are used.
+      lumped_mass.zero_out_ghost_values();
+      area.zero_out_ghost_values();
+      mass_check.compress(VectorOperation::add);
+      bool complete = true;
+      for (unsigned int i = 0; i < partitioner->locally_owned_size(); ++i)
+        complete = complete && std::abs(mass_check.local_element(i) -
+                                        lumped_mass.local_element(i)) <=
+                                 1e-12 * lumped_mass.local_element(i);
+      AssertThrow(!Utilities::MPI::logical_or(!complete, communicator),
+                  ExcMessage("FE set-up: a cell next to an owned node is "
+                             "neither owned nor a ghost cell"));
+
+      const unsigned int n_loop_cells = cell_index.size();
+      cells.failed.assign(n_loop_cells, 0);
+      cells.log_stretch.assign(n_loop_cells, 0.);
+      cells.mean_log_stretch.assign(n_loop_cells, 0.);
+      cells.damage.assign(n_loop_cells, 0.);
+      cells.kappa.assign(n_loop_cells, 0.);
+      cells.energy.assign(n_loop_cells, 0.);
+      cells.dissipated.assign(n_loop_cells, 0.);
       const bool progressive =
         shared.yarn.failure_model ==
         YarnImpact::Parameters::Yarn::FailureModel::progressive;
@@ -192,19 +228,16 @@ namespace YarnImpact
                                : shared.yarn.failure_strain);
       failure_law.fracture_energy = shared.yarn.fracture_energy;
       failure_law.fibre_modulus   = law.axial_modulus();
-      failure_law.kind =
-        !shared.yarn.failure ? FailureLaw::Kind::none
-        : shared.yarn.failure_model ==
-            YarnImpact::Parameters::Yarn::FailureModel::progressive
-          ? FailureLaw::Kind::progressive
-          : FailureLaw::Kind::sudden;
-      cells.compaction.assign(n_owned_cells, 0.);
+      failure_law.kind = !shared.yarn.failure ? FailureLaw::Kind::none
+                         : progressive        ? FailureLaw::Kind::progressive
+                                              : FailureLaw::Kind::sudden;
+      cells.compaction.assign(n_loop_cells, 0.);
 
       // Owned nodes, their constraints and stations. The x dof of a vertex
       // identifies it; all three dofs of a vertex have the same owner.
       const double tol = 1e-6 * station_spacing;
       std::vector<bool> seen(n_local, false);
-      for (unsigned int c = 0; c < n_owned_cells; ++c)
+      for (const unsigned int c : owned_cells)
         for (unsigned int a = 0; a < n_nodes; ++a)
           {
             const unsigned int ix = cells.dofs[c * n_cell_dofs + 3 * a];
@@ -241,10 +274,10 @@ namespace YarnImpact
           }
 
       // Mass of the whole yarn (each node's x dof carries its mass once).
-      double local_mass = 0.;
+      ReproducibleSum mass_sum(1);
       for (const auto &node : nodes)
-        local_mass += lumped_mass.local_element(node[0]);
-      total_mass = symmetry * Utilities::MPI::sum(local_mass, communicator);
+        mass_sum.add(0, lumped_mass.local_element(node[0]));
+      total_mass       = symmetry * mass_sum.sum(communicator)[0];
       double local_top = -std::numeric_limits<double>::max();
       for (const auto &node : nodes)
         local_top = std::max(local_top, reference_coordinate[node[1]]);
@@ -292,7 +325,7 @@ namespace YarnImpact
       const double c_axial2 = law.axial_modulus() / law.density;
       double rate2          = 0.;
       double min_h2         = std::numeric_limits<double>::max();
-      for (unsigned int c = 0; c < cell_index.size(); ++c)
+      for (const unsigned int c : owned_cells)
         {
           if (cells.failed[c] != CellState::active)
             continue;
@@ -357,23 +390,23 @@ namespace YarnImpact
                                    const double dt)
     {
       displacement.update_ghost_values();
-      force          = 0.;
-      elastic_energy = internal_forces(law,
-                                       cells,
-                                       displacement,
-                                       force,
-                                       failure_law,
-                                       dissipated);
-      force.compress(VectorOperation::add);
-      projectile_speed      = std::abs(projectile.velocity());
-      const double reaction = contact.add_forces(projectile,
-                                                 reference_coordinate,
-                                                 displacement,
-                                                 velocity,
-                                                 force,
-                                                 dt,
-                                                 dissipated);
-      return symmetry * Utilities::MPI::sum(reaction, communicator);
+      force = 0.;
+      // Owned and ghost cells (setup()): the owned entries of force are
+      // complete, with no compress. The loop's energy sums include the
+      // ghost cells; the observables sum CellData::energy and
+      // CellData::dissipated over the owned cells instead.
+      double released = 0.;
+      internal_forces(law, cells, displacement, force, failure_law, released);
+      projectile_speed = std::abs(projectile.velocity());
+      contact.add_forces(projectile,
+                         reference_coordinate,
+                         displacement,
+                         velocity,
+                         force,
+                         dt);
+      ReproducibleSum reaction(1);
+      contact.add_reactions(reaction, 0);
+      return symmetry * reaction.sum(communicator)[0];
     }
 
 
@@ -442,9 +475,9 @@ namespace YarnImpact
       out.put(cells.log_stretch);
       out.put(cells.mean_log_stretch);
       out.put(cells.compaction);
+      out.put(cells.energy);
+      out.put(cells.dissipated);
       out.tag("fe energies");
-      out.put(elastic_energy);
-      out.put(dissipated);
       out.put(projectile_speed);
       contact.save(out);
     }
@@ -469,9 +502,9 @@ namespace YarnImpact
       in.get_same_size(cells.mean_log_stretch,
                        "mean fibre stretch of the owned cells");
       in.get_same_size(cells.compaction, "compaction of the owned cells");
+      in.get_same_size(cells.energy, "strain energy of the cells");
+      in.get_same_size(cells.dissipated, "energy released by the cells");
       in.tag("fe energies");
-      in.get(elastic_energy);
-      in.get(dissipated);
       in.get(projectile_speed);
       contact.load(in);
     }

@@ -1,4 +1,5 @@
 #include <yarn_impact/core/output_file.h>
+#include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/fe/constitutive_law.h>
 
 #include <deal.II/base/mpi.h>
@@ -24,30 +25,24 @@ namespace YarnImpact
     YarnModel<Law>::observables() const
     {
       Observables o;
-      double kinetic = 0.;
+      // Every sum over the ranks is a ReproducibleSum of per-dof, per-cell
+      // and per-node terms, so that the history does not depend on the
+      // partition: sums 0-3 are the energies, then the station sums.
+      const unsigned int n = n_stations;
+      ReproducibleSum sums(4 + 6 * n);
       {
-        const unsigned int n  = velocity.locally_owned_size();
-        const double *const v = velocity.begin();
-        const double *const m = lumped_mass.begin();
-        for (unsigned int i = 0; i < n; ++i)
-          kinetic += 0.5 * m[i] * v[i] * v[i];
+        const unsigned int n_owned = velocity.locally_owned_size();
+        const double *const v      = velocity.begin();
+        const double *const m      = lumped_mass.begin();
+        for (unsigned int i = 0; i < n_owned; ++i)
+          sums.add(0, 0.5 * m[i] * v[i] * v[i]);
       }
-      double local[4] = {kinetic, elastic_energy, contact.energy(), dissipated};
-      double global[4];
-      Utilities::MPI::sum(ArrayView<const double>(local, 4),
-                          communicator,
-                          ArrayView<double>(global, 4));
-      o.kinetic_energy    = symmetry * global[0];
-      o.elastic_energy    = symmetry * global[1];
-      o.contact_energy    = symmetry * global[2];
-      o.dissipated_energy = symmetry * global[3];
-
       // Broken: by the sudden criterion, or fibre damage 1 (a cell that
       // keeps only its transverse response); eroded apart; damaged: fibre
       // damage started (progressive), whatever became of the cell since.
       double max_strain      = 0.;
       unsigned int counts[3] = {0, 0, 0}; // failed, eroded, damaged
-      for (unsigned int c = 0; c < cell_index.size(); ++c)
+      for (const unsigned int c : owned_cells)
         {
           if (cells.damage[c] > 0.)
             ++counts[2];
@@ -56,9 +51,19 @@ namespace YarnImpact
           else if (cells.failed[c] == CellState::broken ||
                    cells.damage[c] >= 1.)
             ++counts[0];
-          else
-            max_strain = std::max(max_strain, std::expm1(cells.log_stretch[c]));
+          if (cells.failed[c] == CellState::active)
+            {
+              if (cells.damage[c] < 1.)
+                max_strain =
+                  std::max(max_strain, std::expm1(cells.log_stretch[c]));
+              sums.add(1, cells.energy[c]);
+            }
+          // What the cell released: its energy when it broke or was eroded
+          // (none if that was not finite), and its fibre-damage dissipation.
+          sums.add(3, cells.dissipated[c]);
         }
+      contact.add_energies(sums, 2);
+      contact.add_dissipated(sums, 3);
       Utilities::MPI::sum(ArrayView<const unsigned int>(counts, 3),
                           communicator,
                           ArrayView<unsigned int>(counts, 3));
@@ -68,17 +73,16 @@ namespace YarnImpact
       o.n_eroded        = factor * counts[1];
       o.n_damaged       = factor * counts[2];
 
-      // Station profile: maxima in one array, sums in another.
-      const unsigned int n = n_stations;
+      // Station profile: maxima in one array, sums in the other.
       // The station's strain is the volume average over the cells that
       // touch its node layer: the yarn's strain T / EA. Fibres of one
       // section are not coupled in longitudinal shear (G_LT = 0), so the
       // largest strain in a section can be well above it.
       std::vector<double> maxima(3 * n, -std::numeric_limits<double>::max());
-      // Sums: |x|, count, strain x volume, volume, volume x z^2 and
-      // deformed volume per station.
-      std::vector<double> sums(6 * n, 0.);
-      for (unsigned int c = 0; c < cell_index.size(); ++c)
+      // Sums 4 + (0-5) n + s: |x|, count, strain x volume, volume,
+      // volume x z^2 and deformed volume per station s.
+      const unsigned int st = 4;
+      for (const unsigned int c : owned_cells)
         {
           if (cells.failed[c])
             continue;
@@ -123,11 +127,12 @@ namespace YarnImpact
               const unsigned int s = static_cast<unsigned int>(std::round(
                 std::abs(reference_coordinate[dofs[3 * a]]) / station_spacing));
               // Each cell has four vertices on each of its two layers.
-              sums[2 * n + s] +=
-                0.25 * cell_volume[c] * std::expm1(cells.mean_log_stretch[c]);
-              sums[3 * n + s] += 0.25 * cell_volume[c];
-              sums[4 * n + s] += 0.25 * vz2;
-              sums[5 * n + s] += 0.25 * vol;
+              sums.add(st + 2 * n + s,
+                       0.25 * cell_volume[c] *
+                         std::expm1(cells.mean_log_stretch[c]));
+              sums.add(st + 3 * n + s, 0.25 * cell_volume[c]);
+              sums.add(st + 4 * n + s, 0.25 * vz2);
+              sums.add(st + 5 * n + s, 0.25 * vol);
             }
         }
       for (unsigned int k = 0; k < nodes.size(); ++k)
@@ -141,11 +146,15 @@ namespace YarnImpact
           maxima[s] = std::max(maxima[s], -displacement.local_element(node[1]));
           maxima[n + s]     = std::max(maxima[n + s], z);
           maxima[2 * n + s] = std::max(maxima[2 * n + s], -z);
-          sums[s] += std::abs(x);
-          sums[n + s] += 1.;
+          sums.add(st + s, std::abs(x));
+          sums.add(st + n + s, 1.);
         }
       Utilities::MPI::max(maxima, communicator, maxima);
-      Utilities::MPI::sum(sums, communicator, sums);
+      const std::vector<double> total = sums.sum(communicator);
+      o.kinetic_energy                = symmetry * total[0];
+      o.elastic_energy                = symmetry * total[1];
+      o.contact_energy                = symmetry * total[2];
+      o.dissipated_energy             = symmetry * total[3];
 
       const bool quarter =
         shared.general.symmetry == YarnImpact::Parameters::Symmetry::quarter;
@@ -153,14 +162,15 @@ namespace YarnImpact
       profile.resize(n);
       for (unsigned int s = 0; s < n; ++s)
         {
-          profile.position[s] = sums[s] / std::max(sums[n + s], 1.);
+          const double *const t = &total[st];
+          profile.position[s]   = t[s] / std::max(t[n + s], 1.);
           profile.axial_strain[s] =
-            sums[2 * n + s] / std::max(sums[3 * n + s], 1e-300);
+            t[2 * n + s] / std::max(t[3 * n + s], 1e-300);
           profile.deflection[s] = maxima[s];
           profile.width[s] =
             quarter ? 2. * maxima[n + s] : maxima[n + s] + maxima[2 * n + s];
           profile.rms_width[s] =
-            4. * std::sqrt(sums[4 * n + s] / std::max(sums[5 * n + s], 1e-300));
+            4. * std::sqrt(t[4 * n + s] / std::max(t[5 * n + s], 1e-300));
         }
       if (initial_width[0] == 0.)
         const_cast<std::vector<double> &>(initial_width) = profile.width;
@@ -181,7 +191,7 @@ namespace YarnImpact
       bool any = false;
       // A layer is cut when none of its cells carries fibre stress:
       // broken, eroded, or fully damaged.
-      for (unsigned int c = 0; c < cell_index.size(); ++c)
+      for (const unsigned int c : owned_cells)
         if (cells.failed[c] != CellState::active || cells.damage[c] >= 1.)
           {
             failed[std::min(cell_layer[c], n_layers - 1)] += 1;
@@ -222,7 +232,7 @@ namespace YarnImpact
       const unsigned int n_fields = sizeof(names) / sizeof(names[0]);
       std::vector<Vector<float>> fields(n_fields, Vector<float>(n_cells));
       const float rank = Utilities::MPI::this_mpi_process(communicator);
-      for (unsigned int c = 0; c < cell_index.size(); ++c)
+      for (const unsigned int c : owned_cells)
         {
           const unsigned int id    = cell_index[c];
           const unsigned int *dofs = &cells.dofs[c * n_cell_dofs];

@@ -136,7 +136,7 @@ namespace YarnImpact
       bool
       yarn_cut_through() const;
 
-      /** Current positions [m] of the 8 vertices of owned cell c. */
+      /** Current positions [m] of the 8 vertices of cell c. */
       void
       vertex_positions(const unsigned int c, double (&p)[n_nodes][3]) const;
 
@@ -158,9 +158,12 @@ namespace YarnImpact
       /** Reference coordinate of each local dof (its own component). */
       std::vector<double> reference_coordinate;
 
-      /** Owned cells as the force loop sees them. */
+      /** Owned and ghost cells, in the order of their CellIds, as the
+       * force loop sees them (setup() says why). */
       CellData cells;
-      // Owned cells, besides: active_cell_index, local axis along x,
+      /** The owned ones among them (indices into cells). */
+      std::vector<unsigned int> owned_cells;
+      // The same cells, besides: active_cell_index, local axis along x,
       // axial cell layer, reference volume [m^3].
       std::vector<unsigned int> cell_index;
       std::vector<unsigned char> cell_axis;
@@ -189,10 +192,6 @@ namespace YarnImpact
       /** Largest fraction of the smallest cell size a node may close in one
        * step [-] (stable_time_step()). */
       static constexpr double closing_fraction = 0.25;
-
-      // Energies of the owned part, from the last compute_forces() [J].
-      double elastic_energy = 0.;
-      double dissipated     = 0.;
     };
     // Here, not in fe_model.cc: fe_observables.cc calls it too.
     template <class Law>

@@ -135,6 +135,8 @@ namespace
     cells.log_stretch.assign(n, 0.);
     cells.mean_log_stretch.assign(n, 0.);
     cells.compaction.assign(n, 0.);
+    cells.energy.assign(n, 0.);
+    cells.dissipated.assign(n, 0.);
 
     FailureLaw failure;
     failure.kind              = FailureLaw::Kind::progressive;

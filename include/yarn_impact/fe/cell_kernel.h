@@ -227,6 +227,15 @@ namespace YarnImpact
       std::vector<double> mean_log_stretch;
       /** Largest |I_tc| over the Gauss points (stable time step). */
       std::vector<double> compaction;
+      /** Strain energy [J] at the last evaluation; a failed cell keeps the
+       * one it released when it failed. The energies are summed from these
+       * per-cell terms (ReproducibleSum), so that the sums do not depend on
+       * which rank holds which cell. */
+      std::vector<double> energy;
+      /** Energy the cell has released so far [J]: its strain energy when it
+       * broke or was eroded, and the fibre-damage dissipation (summed
+       * per cell for the same reason as #energy). */
+      std::vector<double> dissipated;
 
       /** Number of cells. */
       unsigned int
@@ -239,8 +248,9 @@ namespace YarnImpact
     /**
      * The internal forces of all active cells of @p cells at the
      * displacement @p displacement [m] (ghosts up to date): subtracts each
-     * cell's forces [N] from @p force's local entries (the caller
-     * compresses) and returns the strain energy [J] of the cells. The
+     * cell's forces [N] from @p force's local entries, cell after cell in
+     * the order of @p cells, records each cell's strain energy [J] in
+     * CellData::energy and returns their sum. The
      * failure law @p failure breaks, damages and erodes cells (FailureLaw);
      * the energy they release [J] goes to @p dissipated: the strain energy
      * of a broken or eroded cell, and for fibre damage the law's

@@ -4,6 +4,7 @@
 #include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/projectile.h>
+#include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/fe/parameters.h>
 
 #include <deal.II/lac/la_parallel_vector.h>
@@ -59,37 +60,48 @@ namespace YarnImpact
       /**
        * Add the contact forces [N] on the nodes to @p force (owned
        * entries) at the current positions (@p reference_coordinate [m]
-       * plus @p displacement [m]) and velocities [m/s]; the damping and
-       * friction work over the step @p dt [s] is added to
-       * @p dissipated [J]. Returns the force of this rank's nodes on the
-       * projectile along y [N] (not summed over ranks, not scaled by the
-       * symmetry). The law is chosen once per call, not per node.
+       * plus @p displacement [m]) and velocities [m/s]. Each node keeps
+       * its force on the projectile and its contact energy, and adds its
+       * damping and friction work over the step @p dt [s] to its own
+       * total: per-node terms, so that their sums over the ranks can be
+       * taken independently of the partition (add_reactions() and the
+       * like). The law is chosen once per call, not per node.
        */
-      double
+      void
       add_forces(
         const Projectile &projectile,
         const std::vector<double> &reference_coordinate,
         const dealii::LinearAlgebra::distributed::Vector<double> &displacement,
         const dealii::LinearAlgebra::distributed::Vector<double> &velocity,
         dealii::LinearAlgebra::distributed::Vector<double> &force,
-        const double dt,
-        double &dissipated);
+        const double dt);
 
-      /** Contact energy [J] of this rank's nodes at the last add_forces(). */
-      double
-      energy() const
-      {
-        return stored_energy;
-      }
+      /** Add the force of each node on the projectile along y [N], at the
+       * last add_forces(), to sum @p i of @p sum. */
+      void
+      add_reactions(ReproducibleSum &sum, const unsigned int i) const;
+
+      /** Add the contact energy of each node [J], at the last
+       * add_forces(), to sum @p i of @p sum. */
+      void
+      add_energies(ReproducibleSum &sum, const unsigned int i) const;
+
+      /** Add the damping and friction work of each node so far [J] to
+       * sum @p i of @p sum. */
+      void
+      add_dissipated(ReproducibleSum &sum, const unsigned int i) const;
 
       /** Write the contact's state (tangential histories, which nodes
-       * touch, the stored energy) to a checkpoint. */
+       * touch, each node's reaction, energy and dissipated work) to a
+       * checkpoint. */
       void
       save(Checkpoint::Writer &out) const
       {
         out.put(history);
         out.put(touching);
+        out.put(reaction);
         out.put(stored_energy);
+        out.put(dissipated);
       }
 
       /** Read what save() wrote. */
@@ -98,7 +110,9 @@ namespace YarnImpact
       {
         in.get_same_size(history, "tangential history of the contact nodes");
         in.get_same_size(touching, "contact state of the contact nodes");
-        in.get(stored_energy);
+        in.get_same_size(reaction, "reactions of the contact nodes");
+        in.get_same_size(stored_energy, "energies of the contact nodes");
+        in.get_same_size(dissipated, "dissipated work of the contact nodes");
       }
 
     private:
@@ -122,7 +136,10 @@ namespace YarnImpact
       /** Whether each node touched the projectile at the last
        * add_forces() (a new contact starts without history). */
       std::vector<std::uint8_t> touching;
-      double stored_energy = 0.;
+      /** Force of each node on the projectile along y [N], contact energy
+       * [J] (both at the last add_forces()) and damping and friction work
+       * so far [J]. */
+      std::vector<double> reaction, stored_energy, dissipated;
     };
   } // namespace FE
 } // namespace YarnImpact
