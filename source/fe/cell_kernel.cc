@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 namespace YarnImpact
@@ -186,8 +187,11 @@ namespace YarnImpact
         return integrate_cell(law, u, grad, JxW, fibre_damage, f);
       }
 
+      // YARN_IMPACT_PORTABLE_KERNEL=1 forces the portable variant, to
+      // compare the two on one machine (doc/fe-model.md).
       const bool cpu_has_avx2_fma =
-        __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+        __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+        std::getenv("YARN_IMPACT_PORTABLE_KERNEL") == nullptr;
 #endif
 
       template <class Law>
