@@ -56,6 +56,11 @@ namespace YarnImpact
     void
     write_snapshot(const double time);
 
+    /** Write `<model>.pvd` listing #snapshots, whole or not at all
+     * (collective). */
+    void
+    write_pvd() const;
+
     /** Add @p row to the history; an OutputError on any rank stops all. */
     void
     add_history_row(const HistoryRow &row);
@@ -128,6 +133,21 @@ namespace YarnImpact
 
 
   void
+  ImpactSimulation::Implementation::write_pvd() const
+  {
+    collective_output(communicator, [&] {
+      if (is_root)
+        {
+          AtomicFile pvd(parameters.output.directory + "/" + model->name() +
+                         ".pvd");
+          DataOutBase::write_pvd_record(pvd.stream(), snapshots);
+          pvd.commit();
+        }
+    });
+  }
+
+
+  void
   ImpactSimulation::Implementation::write_snapshot(const double time)
   {
     const std::string &dir = parameters.output.directory;
@@ -138,14 +158,7 @@ namespace YarnImpact
       record = model->write_snapshot(dir, snapshots.size(), time);
     });
     snapshots.emplace_back(time * 1e6, record);
-    collective_output(communicator, [&] {
-      if (is_root)
-        {
-          AtomicFile pvd(dir + "/" + model->name() + ".pvd");
-          DataOutBase::write_pvd_record(pvd.stream(), snapshots);
-          pvd.commit();
-        }
-    });
+    write_pvd();
   }
 
 
@@ -225,15 +238,7 @@ namespace YarnImpact
                                           std::move(rows));
     });
     if (!snapshots.empty())
-      collective_output(communicator, [&] {
-        if (is_root)
-          {
-            AtomicFile pvd(parameters.output.directory + "/" + model->name() +
-                           ".pvd");
-            DataOutBase::write_pvd_record(pvd.stream(), snapshots);
-            pvd.commit();
-          }
-      });
+      write_pvd();
   }
 
 

@@ -213,13 +213,7 @@ namespace YarnImpact
                              "neither owned nor a ghost cell"));
 
       const unsigned int n_loop_cells = cell_index.size();
-      cells.failed.assign(n_loop_cells, 0);
-      cells.log_stretch.assign(n_loop_cells, 0.);
-      cells.mean_log_stretch.assign(n_loop_cells, 0.);
-      cells.damage.assign(n_loop_cells, 0.);
-      cells.kappa.assign(n_loop_cells, 0.);
-      cells.energy.assign(n_loop_cells, 0.);
-      cells.dissipated.assign(n_loop_cells, 0.);
+      cells.reset_state(n_loop_cells);
       const bool progressive =
         shared.yarn.failure_model ==
         YarnImpact::Parameters::Yarn::FailureModel::progressive;
@@ -231,7 +225,6 @@ namespace YarnImpact
       failure_law.kind = !shared.yarn.failure ? FailureLaw::Kind::none
                          : progressive        ? FailureLaw::Kind::progressive
                                               : FailureLaw::Kind::sudden;
-      cells.compaction.assign(n_loop_cells, 0.);
 
       // Owned nodes, their constraints and stations. The x dof of a vertex
       // identifies it; all three dofs of a vertex have the same owner.

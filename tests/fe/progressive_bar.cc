@@ -129,14 +129,7 @@ namespace
         cells.fibre_length.push_back(L / n_cells);
       }
     const unsigned int n = tria.n_active_cells();
-    cells.failed.assign(n, CellState::active);
-    cells.damage.assign(n, 0.);
-    cells.kappa.assign(n, 0.);
-    cells.log_stretch.assign(n, 0.);
-    cells.mean_log_stretch.assign(n, 0.);
-    cells.compaction.assign(n, 0.);
-    cells.energy.assign(n, 0.);
-    cells.dissipated.assign(n, 0.);
+    cells.reset_state(n);
 
     FailureLaw failure;
     failure.kind              = FailureLaw::Kind::progressive;

@@ -237,6 +237,21 @@ namespace YarnImpact
        * per cell for the same reason as #energy). */
       std::vector<double> dissipated;
 
+      /** Size every per-cell state array to @p n cells, each cell active,
+       * undamaged and unstrained. */
+      void
+      reset_state(const unsigned int n)
+      {
+        failed.assign(n, 0);
+        damage.assign(n, 0.);
+        kappa.assign(n, 0.);
+        log_stretch.assign(n, 0.);
+        mean_log_stretch.assign(n, 0.);
+        compaction.assign(n, 0.);
+        energy.assign(n, 0.);
+        dissipated.assign(n, 0.);
+      }
+
       /** Number of cells. */
       unsigned int
       size() const
