@@ -17,6 +17,7 @@
 #include <yarn_impact/dem/neighbour_lists.h>
 #include <yarn_impact/dem/observables.h>
 #include <yarn_impact/dem/spheres.h>
+#include <yarn_impact/dem/stable_step.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -58,17 +59,7 @@ namespace YarnImpact
         setup(const Projectile &projectile, std::ostream &out) override;
 
         double
-        stable_time_step() const override
-        {
-          // The contact bound holds while a sphere meets the projectile over
-          // many steps: a fast projectile must not close more than a tenth
-          // of a sphere radius in one step, or it would jump over spheres
-          // (it binds above about 700 m/s here; doc/dem.md).
-          if (projectile_speed > 0.)
-            return std::min(critical_step,
-                            0.1 * chains.radius / projectile_speed);
-          return critical_step;
-        }
+        stable_time_step() const override;
 
         double
         yarn_top() const override
@@ -170,6 +161,11 @@ namespace YarnImpact
         }
 
       private:
+        /** Gap below which a sphere counts as touching the projectile in
+         * the stable step [m]. */
+        double
+        projectile_margin() const;
+
         /** Grow the list halos and the ghost layers to the stations that
          * came near (collective); whether the ghost layers grew. */
         bool
@@ -193,7 +189,11 @@ namespace YarnImpact
         const Contact::LawType projectile_law;
         const Contact::ContactConstants projectile_constants;
         ObservablesMeter meter;
+        /** The scalar bound with `Coordination number` contacts [s]. */
         const double critical_step;
+        /** The bound from the springs there are (`Stable time step =
+         * contacts`). */
+        const ContactStableStep contact_step;
         /** Projectile speed at the last set-up or force evaluation [m/s]. */
         double projectile_speed = 0.;
         const bool failure;
@@ -233,9 +233,64 @@ namespace YarnImpact
         // reduced for the contact damping.
         , critical_step(
             critical_time_step(prm, chains.truss_k, chains.sphere_mass))
+        , contact_step(chains,
+                       fibre_law.k_n,
+                       fibre_law.k_t,
+                       projectile_constants)
         , failure(shared.yarn.failure)
         , failure_strain(shared.yarn.failure_strain)
       {}
+
+
+      double
+      Model::stable_time_step() const
+      {
+        double critical = critical_step;
+        if (prm.stable_step == StableStep::contacts)
+          {
+            const double omega2 =
+              contact_step.omega2_bound(decomposition,
+                                        lists.blocks,
+                                        spheres,
+                                        projectile_contact.yc,
+                                        projectile_contact.Rr,
+                                        projectile_margin());
+            if (omega2 > 0.)
+              {
+                // Damping lowers the step as in the scalar bound. The step
+                // is rounded down to 10 significant bits: the bound's sums
+                // may differ in their last bits with the partition, and the
+                // step must not (histories are the same on any number of
+                // ranks).
+                const double dt =
+                  2. / std::sqrt(omega2) * damping_step_factor(prm);
+                int e;
+                std::frexp(dt, &e);
+                const double q = std::ldexp(1., e - 11);
+                critical       = std::floor(dt / q) * q;
+              }
+          }
+        // The contact bound holds while a sphere meets the projectile over
+        // many steps: a fast projectile must not close more than a tenth of
+        // a sphere radius in one step, or it would jump over spheres (it
+        // binds above about 700 m/s here; doc/dem.md).
+        if (projectile_speed > 0.)
+          return std::min(critical, 0.1 * chains.radius / projectile_speed);
+        return critical;
+      }
+
+
+      double
+      Model::projectile_margin() const
+      {
+        // What the projectile closes in two update intervals at the step
+        // of the scalar bound (shorter than the step used), and at least a
+        // tenth of a diameter.
+        return std::max(0.1 * chains.d,
+                        2. * projectile_speed *
+                          shared.time.time_step_update_interval *
+                          critical_step);
+      }
 
 
       AxialProperties

@@ -97,11 +97,24 @@ namespace YarnImpact
                         "hardly more pairs (the next neighbours in a packing, "
                         "one sphere along on the next fibre, are sqrt(2) "
                         "diameters away) [m].");
+      prm.declare_entry(
+        "Stable time step",
+        "contacts",
+        Patterns::Selection("contacts|coordination"),
+        "How the impact model bounds its stable time step (doc/theory.md "
+        "section 3.2). contacts: from the springs it has now (trusses, the "
+        "listed fibre pairs, the projectile near the spheres), direction by "
+        "direction through each sphere's fibre axis, recomputed every "
+        "Time/Time step update interval steps. coordination: one bound for "
+        "the whole run, with Coordination number contacts per sphere all "
+        "added up (the step of versions before the contacts bound).");
       prm.declare_entry("Coordination number",
                         "6",
                         Patterns::Integer(),
                         "Number of fibre-fibre contacts per sphere assumed by "
-                        "the stable time step estimate [-].");
+                        "the scalar stable time step estimate (the "
+                        "elementary tests, and Stable time step = "
+                        "coordination) [-].");
       prm.declare_entry("Ghost stations",
                         "4",
                         Patterns::Integer(),
@@ -219,6 +232,9 @@ namespace YarnImpact
       projectile_contact_law =
         Contact::law_type(prm.get("Projectile contact law"));
       skin         = get_positive_double(prm, "DEM", "Skin");
+      stable_step  = prm.get("Stable time step") == "contacts" ?
+                       StableStep::contacts :
+                       StableStep::coordination;
       const long c = prm.get_integer("Coordination number");
       require(c >= 0, "DEM/Coordination number", "must not be negative");
       coordination      = static_cast<unsigned int>(c);
@@ -390,9 +406,16 @@ namespace YarnImpact
         2. *
         (2. * truss_k + prm.coordination * fibre.k_n + projectile.stiffness) /
         sphere_mass;
+      return 2. / std::sqrt(omega2) * damping_step_factor(prm);
+    }
+
+
+    double
+    damping_step_factor(const Parameters &prm)
+    {
       const double zeta =
         std::max(prm.damping_ratio, prm.projectile_damping_ratio);
-      return 2. / std::sqrt(omega2) * (std::sqrt(1. + zeta * zeta) - zeta);
+      return std::sqrt(1. + zeta * zeta) - zeta;
     }
   } // namespace DEM
 } // namespace YarnImpact

@@ -25,6 +25,14 @@ namespace YarnImpact
      */
     using FibreContactLaw = Contact::CundallStrackLaw;
 
+    /** How the impact model bounds its stable time step (`Stable time
+     * step`, doc/theory.md section 3.2). */
+    enum class StableStep
+    {
+      contacts,     ///< from the springs it has now, direction by direction
+      coordination, ///< scalar Gershgorin bound with `Coordination number`
+    };
+
     /** Where the fibre centres come from. */
     enum class FibreLayout
     {
@@ -67,7 +75,11 @@ namespace YarnImpact
         Contact::LawType::cundall_strack;
       /** Verlet skin of the neighbour lists [m]. */
       double skin = 4e-6;
-      /** Contacts per sphere assumed by the stable time step [-]. */
+      /** How the impact model bounds its stable step. */
+      StableStep stable_step = StableStep::contacts;
+      /** Contacts per sphere assumed by the scalar stable time step (the
+       * elementary tests, and the impact model with `Stable time step =
+       * coordination`) [-]. */
       unsigned int coordination = 6;
       /** Cross-sections copied from each neighbouring rank at the start;
        * the layer grows by itself when fibres slide across a rank
@@ -188,6 +200,15 @@ namespace YarnImpact
     critical_time_step(const Parameters &prm,
                        const double truss_k,
                        const double sphere_mass);
+
+    /**
+     * The factor sqrt(1 + zeta^2) - zeta [-] by which viscous contact
+     * damping of ratio zeta (the larger of the fibre and the projectile
+     * contacts' of @p prm) lowers the stable step of an undamped bound
+     * (doc/theory.md section 3.2).
+     */
+    double
+    damping_step_factor(const Parameters &prm);
 
   } // namespace DEM
 } // namespace YarnImpact
