@@ -423,7 +423,11 @@ namespace YarnImpact
       {
         if (schedule.time_step_update_due())
           {
-            const double critical = model->stable_time_step();
+            double critical;
+            {
+              TimerOutput::Scope scope(timer, "stable time step");
+              critical = model->stable_time_step();
+            }
             if (!std::isfinite(critical) || !(critical > 0.))
               fail("the stable time step is not a positive number (a "
                    "collapsed or inverted element?)");

@@ -72,10 +72,9 @@ namespace YarnImpact
         const FibreChains &chains;
         const double k_n, k_t;
         const double k_p, k_pt;
-        /** Scratch: the fibre axis of the active spheres [-], and the
-         * stiffness blocks of the owned ones, 6 per sphere [N/m] (float:
-         * the bound needs no more, and the memory per rank stays low). */
-        mutable std::vector<float> axis, blocks_ii;
+        /** Scratch: the stiffness blocks of the owned spheres, 6 per
+         * sphere [N/m]. */
+        mutable std::vector<float> blocks_ii;
       };
     } // namespace internal
   }   // namespace DEM
