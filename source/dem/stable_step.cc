@@ -154,6 +154,10 @@ namespace YarnImpact
                  p < B.pstart[i - B.b + 1];
                  ++p)
               {
+                // The force evaluation at these positions marked the pairs
+                // in contact (a negative weight).
+                if (B.pairs[p].w >= 0.f)
+                  continue;
                 const std::size_t j = B.pairs[p].j;
                 double n[3]         = {x[3 * i] - x[3 * j],
                                        x[3 * i + 1] - x[3 * j + 1],
@@ -173,6 +177,8 @@ namespace YarnImpact
         for (const ListBlock &B : blocks)
           for (const MirrorPair &mp : B.mpairs)
             {
+              if (!mp.active)
+                continue;
               const std::size_t i = mp.i, j = mp.j;
               const double sx = (mp.axes & 1) ? -1. : 1.,
                            sz = (mp.axes & 2) ? -1. : 1.;
