@@ -134,6 +134,19 @@ namespace YarnImpact
         "first break by scripts/identify_fibre_failure.py "
         "(doc/identification.md section 6).");
       prm.declare_entry(
+        "Damage onset spread",
+        "0",
+        Patterns::Double(),
+        "Progressive failure model: relative growth s of the damage onset "
+        "strain across the yarn's thickness [-]. A cell whose reference "
+        "centroid lies at the depth z below the face the projectile strikes "
+        "(z = 0 there, 1 at the opposite face) starts its damage at Damage "
+        "onset strain x (1 + s z): the fibres against the nose are the most "
+        "stretched of the section and break first, those at the back last "
+        "(doc/theory.md section 5.4). 0: one onset for every cell. "
+        "Identified from the DEM impact by scripts/identify_fibre_failure.py "
+        "(doc/identification.md section 8).");
+      prm.declare_entry(
         "Fracture energy",
         "5.41e4",
         Patterns::Double(),
@@ -165,6 +178,11 @@ namespace YarnImpact
       fracture_energy = get_positive_double(prm, "Yarn", "Fracture energy");
       damage_onset_strain =
         get_positive_double(prm, "Yarn", "Damage onset strain");
+      damage_onset_spread = prm.get_double("Damage onset spread");
+      require(damage_onset_spread >= 0. && std::isfinite(damage_onset_spread),
+              "Yarn/Damage onset spread",
+              "must be zero or positive: the fibres against the nose break "
+              "first");
       prm.leave_subsection();
     }
 
