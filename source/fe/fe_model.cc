@@ -124,10 +124,10 @@ namespace YarnImpact
           fe_values.reinit(typename Triangulation<3>::cell_iterator(cell));
           cell_index.push_back(cell->active_cell_index());
           double x_lo = std::numeric_limits<double>::max(), x_hi = -x_lo;
-          double y_centroid = 0.;
+          double y_top = -std::numeric_limits<double>::max();
           for (unsigned int a = 0; a < n_nodes; ++a)
             {
-              y_centroid += cell->vertex(a)[1] / n_nodes;
+              y_top = std::max(y_top, cell->vertex(a)[1]);
               double node_mass = 0.;
               for (unsigned int q = 0; q < n_q; ++q)
                 node_mass +=
@@ -177,12 +177,13 @@ namespace YarnImpact
           // fibre (x faces are planes x = const on the extruded mesh).
           cells.fibre_length.push_back(x_hi - x_lo);
           // Depth below the struck face y = +a_y (the projectile comes
-          // from +y), 0 there and 1 at y = -a_y: where the cell's fibres
-          // lie in the order in which the DEM's fibres break.
+          // from +y), 0 there and 1 at y = -a_y, of the cell's shallowest
+          // point: its fibres nearest the struck face break first, and
+          // its damage starts when they do (doc/theory.md section 5.4).
           {
             const double a_y = shared.yarn.thickness_semi_axis;
             cells.depth.push_back(
-              std::clamp((a_y - y_centroid) / (2. * a_y), 0., 1.));
+              std::clamp((a_y - y_top) / (2. * a_y), 0., 1.));
           }
           double volume = 0.;
           for (unsigned int q = 0; q < n_q; ++q)
