@@ -19,7 +19,7 @@ case_lines() { # name -> the prm lines of that case
     progressive_mu0) fric=0 ;;
     progressive) ;;
     progressive_nospread) spread=0 ;;
-    progressive_nospread_axial2x) spread=0; mesh="set Cells along the axis = 200" ;;
+    progressive_spread05) spread=0.5 ;;
     progressive_axial2x) mesh="set Cells along the axis = 200" ;;
     progressive_section2x) mesh="set Section refinements = 1" ;;
     progressive_section4x) mesh="set Section refinements = 2" ;;
@@ -52,7 +52,7 @@ case_lines() { # name -> the prm lines of that case
 
 cases=("$@")
 [ ${#cases[@]} -eq 0 ] && cases=(sudden_mu0 sudden progressive_mu0 progressive
-  progressive_nospread progressive_axial2x progressive_section2x progressive_section4x
+  progressive_nospread progressive_spread05 progressive_axial2x progressive_section2x progressive_section4x
   sudden_section2x sudden_section4x sudden_200 progressive_200 sudden_300
   progressive_300)
 for c in "${cases[@]}"; do

@@ -145,8 +145,8 @@ namespace YarnImpact
        */
       double fibre_modulus = 0.;
 
-      /** The onset I_0 [-] of a cell whose centroid lies at the normalised
-       * depth @p depth [-] below the struck face (CellData::depth, 0 at the
+      /** The onset I_0 [-] of a cell whose shallowest point lies at the
+       * normalised depth @p depth [-] below the struck face (CellData::depth, 0 at the
        * face the projectile strikes, 1 at the opposite one): the onset
        * strain grows linearly with the depth, eps_0 (1 + s depth). The
        * fibres nearest the nose are the most stretched of a section and
@@ -243,8 +243,8 @@ namespace YarnImpact
       /** Reference length of the cell along the fibre [m] (the crack
        * band's width). */
       std::vector<double> fibre_length;
-      /** Normalised depth [-] of the cell's reference centroid below the
-       * face of the yarn that the projectile strikes: 0 on that face, 1 on
+      /** Normalised depth [-] of the cell's shallowest reference point
+       * below the face of the yarn that the projectile strikes: 0 on that face, 1 on
        * the opposite one (FailureLaw::onset_log_stretch_at()). */
       std::vector<double> depth;
 
