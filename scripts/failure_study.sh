@@ -12,12 +12,14 @@ shift 2 2> /dev/null
 mkdir -p "$out"
 
 case_lines() { # name -> the prm lines of that case
-  local v=120 model=progressive fric="" mesh=""
+  local v=120 model=progressive fric="" mesh="" spread=""
   case $1 in
     sudden_mu0)     model=sudden; fric=0 ;;
     sudden)         model=sudden ;;
     progressive_mu0) fric=0 ;;
     progressive) ;;
+    progressive_nospread) spread=0 ;;
+    progressive_spread05) spread=0.5 ;;
     progressive_axial2x) mesh="set Cells along the axis = 200" ;;
     progressive_section2x) mesh="set Section refinements = 1" ;;
     progressive_section4x) mesh="set Section refinements = 2" ;;
@@ -32,6 +34,7 @@ case_lines() { # name -> the prm lines of that case
   echo "include prm/km2_120ms_fe_progressive.prm"
   echo "subsection Yarn"
   echo "  set Failure model = $model"
+  [ -n "$spread" ] && echo "  set Damage onset spread = $spread"
   echo "end"
   echo "subsection Projectile"
   echo "  set Initial velocity = $v"
@@ -49,7 +52,7 @@ case_lines() { # name -> the prm lines of that case
 
 cases=("$@")
 [ ${#cases[@]} -eq 0 ] && cases=(sudden_mu0 sudden progressive_mu0 progressive
-  progressive_axial2x progressive_section2x progressive_section4x
+  progressive_nospread progressive_spread05 progressive_axial2x progressive_section2x progressive_section4x
   sudden_section2x sudden_section4x sudden_200 progressive_200 sudden_300
   progressive_300)
 for c in "${cases[@]}"; do

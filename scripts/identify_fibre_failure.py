@@ -35,6 +35,15 @@ yarn. They are taken from the DEM, not from the FE impact curve:
    on the FE strain history, not on its velocity; 200 and 300 m/s verify
    it without recalibrating (doc/validation.md section 6).
 
+4. The spread of the onset across the section (doc/theory.md section
+   5.4). The DEM's fibres break in the order of their depth below the
+   struck face, the first at the DEM's first break and the last at its
+   cut-through; a cell at the back face holds the last ones. By the same
+   rule as 3, the back face's onset is the largest cell strain the FE
+   without failure has reached up to the DEM's cut-through, and the
+   spread s is its ratio to the onset, less 1 (Yarn/Damage onset spread:
+   eps_0 (1 + s z), z the depth). Again on the FE strain history and the
+   DEM's break times, not on the velocity.
 Usage:
   scripts/identify_fibre_failure.py TENSION_SUMMARY TENSION_CSV DEM_HISTORY_CSV
       FE_HISTORY_CSV [--bands 2]
@@ -171,15 +180,24 @@ def main():
     print("  DEM fibre break strain / FE onset      %.3f"
           % (eps_first / onset))
 
-    I0 = math.log1p(onset)
+    upto_cut = [r for r in rows if r[i_t] <= t2 + 1e-9]
+    onset_back = max(r[i_s] for r in upto_cut)
+    spread = onset_back / onset - 1.
+    print("  largest cell strain up to the DEM's cut-through  %.4f %% "
+          "(%.2f us)" % (100 * onset_back, t2))
+    # The admissible G_f is set by the largest onset, the back face's.
+    I0 = math.log1p(onset_back)
     G_min = 0.5 * a.cell_length * a.k_e * I0 * I0
     I_u = 2 * G_f / (a.cell_length * a.k_e * I0)
     print("Identified")
     print("  Yarn/Failure strain (fibres, DEM)      %.4f" % eps_first)
     print("  Yarn/Damage onset strain               %.4f" % onset)
+    print("  Yarn/Damage onset spread               %.3f (back-face onset "
+          "%.4f)" % (spread, onset_back))
     print("  Yarn/Fracture energy G_f               %.4g J/m^2 (%d bands)"
           % (G_f, a.bands))
-    print("  elastic energy per area of a %.3f mm cell at the onset  %.4g J/m^2"
+    print("  elastic energy per area of a %.3f mm cell at the back-face "
+          "onset  %.4g J/m^2"
           % (a.cell_length * 1e3, G_min))
     print("  final fibre strain of that cell        %.2f %%"
           % (100 * math.expm1(I_u)))

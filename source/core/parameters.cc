@@ -132,7 +132,21 @@ namespace YarnImpact
         "of the fibres on the nose, so its fibres start breaking below the "
         "fibre failure strain; calibrated at 120 m/s against the DEM's "
         "first break by scripts/identify_fibre_failure.py "
-        "(doc/identification.md section 6).");
+        "(doc/identification.md section 8).");
+      prm.declare_entry(
+        "Damage onset spread",
+        "0",
+        Patterns::Double(),
+        "Progressive failure model: relative growth s of the damage onset "
+        "strain across the yarn's thickness [-]. A cell whose shallowest "
+        "reference point lies at the depth z below the face the projectile "
+        "strikes (z = 0 there, 1 at the opposite face) starts its damage at "
+        "Damage onset strain x (1 + s z): the fibres against the nose are "
+        "taken to be the most stretched of the section, breaking first, and "
+        "those at the back last (doc/theory.md section 5.4). 0: one onset "
+        "for every cell. "
+        "Identified from the DEM impact by scripts/identify_fibre_failure.py "
+        "(doc/identification.md section 8).");
       prm.declare_entry(
         "Fracture energy",
         "5.41e4",
@@ -140,8 +154,8 @@ namespace YarnImpact
         "Energy dissipated per unit area of a crack across the yarn by the "
         "progressive failure model, G_f [J/m^2]; identified from the DEM "
         "by scripts/identify_fibre_failure.py (doc/identification.md "
-        "section 6). Must exceed the elastic energy per unit area of the "
-        "longest cell at the failure strain.");
+        "section 8). Must exceed the elastic energy per unit area of the "
+        "longest cell at the largest damage onset strain.");
       prm.leave_subsection();
     }
 
@@ -165,6 +179,11 @@ namespace YarnImpact
       fracture_energy = get_positive_double(prm, "Yarn", "Fracture energy");
       damage_onset_strain =
         get_positive_double(prm, "Yarn", "Damage onset strain");
+      damage_onset_spread = prm.get_double("Damage onset spread");
+      require(damage_onset_spread >= 0. && std::isfinite(damage_onset_spread),
+              "Yarn/Damage onset spread",
+              "must be zero or positive: the fibres against the nose break "
+              "first");
       prm.leave_subsection();
     }
 

@@ -263,8 +263,10 @@ namespace YarnImpact
                   }
                 if (max_Ie > cells.kappa[c])
                   {
+                    const double I_0 =
+                      failure.onset_log_stretch_at(cells.depth[c]);
                     const double d =
-                      failure.damage(max_Ie, cells.fibre_length[c]);
+                      failure.damage(max_Ie, cells.fibre_length[c], I_0);
                     // What the law dissipates: the exact integral along
                     // its envelope (d only grows: irreversible).
                     const double released =
@@ -272,7 +274,8 @@ namespace YarnImpact
                                             cells.kappa[c],
                                             max_Ie,
                                             fibre_energy,
-                                            cells.fibre_length[c]);
+                                            cells.fibre_length[c],
+                                            I_0);
                     dissipated += released;
                     cells.dissipated[c] += released;
                     cells.kappa[c]  = max_Ie;

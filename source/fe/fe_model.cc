@@ -124,8 +124,10 @@ namespace YarnImpact
           fe_values.reinit(typename Triangulation<3>::cell_iterator(cell));
           cell_index.push_back(cell->active_cell_index());
           double x_lo = std::numeric_limits<double>::max(), x_hi = -x_lo;
+          double y_top = -std::numeric_limits<double>::max();
           for (unsigned int a = 0; a < n_nodes; ++a)
             {
+              y_top = std::max(y_top, cell->vertex(a)[1]);
               double node_mass = 0.;
               for (unsigned int q = 0; q < n_q; ++q)
                 node_mass +=
@@ -174,6 +176,15 @@ namespace YarnImpact
           // The crack band's width: the cell's reference length along the
           // fibre (x faces are planes x = const on the extruded mesh).
           cells.fibre_length.push_back(x_hi - x_lo);
+          // Depth below the struck face y = +a_y (the projectile comes
+          // from +y), 0 there and 1 at y = -a_y, of the cell's shallowest
+          // point: its fibres nearest the struck face break first, and
+          // its damage starts when they do (doc/theory.md section 5.4).
+          {
+            const double a_y = shared.yarn.thickness_semi_axis;
+            cells.depth.push_back(
+              std::clamp((a_y - y_top) / (2. * a_y), 0., 1.));
+          }
           double volume = 0.;
           for (unsigned int q = 0; q < n_q; ++q)
             volume += fe_values.JxW(q);
@@ -220,6 +231,8 @@ namespace YarnImpact
       failure_law.onset_log_stretch =
         std::log1p(progressive ? shared.yarn.damage_onset_strain
                                : shared.yarn.failure_strain);
+      failure_law.onset_spread =
+        progressive ? shared.yarn.damage_onset_spread : 0.;
       failure_law.fracture_energy = shared.yarn.fracture_energy;
       failure_law.fibre_modulus   = law.axial_modulus();
       failure_law.kind = !shared.yarn.failure ? FailureLaw::Kind::none
@@ -549,12 +562,18 @@ namespace YarnImpact
           // (doc/theory.md section 5).
           const double h = shared.yarn.length / parameters.n_axial_cells /
                            std::pow(2., parameters.global_refinements);
-          const double I_0   = std::log1p(shared.yarn.damage_onset_strain);
+          // The largest onset is at the back face (doc/theory.md 5.4).
+          const double I_0 =
+            std::log1p(shared.yarn.damage_onset_strain *
+                       (1. + shared.yarn.damage_onset_spread));
           const double G_min = 0.5 * h * parameters.charmetant.k_e * I_0 * I_0;
           std::ostringstream s;
           s << "= " << shared.yarn.fracture_energy
             << " J/m^2 is not above the elastic energy per unit area of a "
-            << h * 1e3 << " mm cell at the damage onset strain, " << G_min
+            << h * 1e3
+            << " mm cell at the largest damage onset strain (Damage onset "
+               "strain x (1 + Damage onset spread)), "
+            << G_min
             << " J/m^2: its softening would snap back (raise it or refine "
                "FE/Cells along the axis)";
           require(shared.yarn.fracture_energy > G_min,

@@ -12,14 +12,16 @@ appended, e.g. a refined mesh) and checks, each on a line of its own:
 - |v_FE - v_DEM| <= 2 m/s at every DEM history time up to 40 us (the DEM
   history is interpolated on the FE times);
 - largest energy error <= 0.5 %.
-Prints each target with MET or MISSED and the measured value. Two of the
-targets are not met yet (doc/validation.md section 6: the FE section is
-cut through within ~1.3 us, the DEM's fibres break over 4.6 us): for them
-the test asserts a regression bound at the level reached (cut-through
-within 4.5 us of the DEM's, |v_FE - v_DEM| <= 4.5 m/s), so that a change
-that makes the agreement worse fails; the first failure and the energy
-error are asserted at their targets. With --strict every target is
-asserted (run it by hand: it fails today).
+Prints each target with MET or MISSED and the measured value. The first
+failure and the energy error are met and asserted at their targets. Two
+targets are not met (doc/validation.md section 6: with the onset spread
+across the thickness the FE section is still cut through within 0.5 us
+of its first damage, at 30.41 us, where the DEM's fibres break over
+4.6 us; largest |v_FE - v_DEM| 2.98 m/s): for them the test asserts a
+regression bound just above the level reached (cut-through within 4.0 us
+of the DEM's, |v_FE - v_DEM| <= 3.5 m/s), so that a change that makes
+the agreement worse fails. With --strict every target is asserted (run
+it by hand: it fails today).
 """
 
 import os
@@ -89,10 +91,10 @@ def main():
          first is not None and abs(first - t_dem_first) <= 1.0, None,
          "%s us" % first),
         ("cut-through within 1 us of the DEM's 34.2 us", cut_gap <= 1.0,
-         cut_gap <= 4.5, "%s us (regression bound: within 4.5 us)" % cut),
+         cut_gap <= 4.0, "%s us (regression bound: within 4.0 us)" % cut),
         ("|v_FE - v_DEM| <= 2 m/s up to 40 us", dv.max() <= 2.0,
-         dv.max() <= 4.5,
-         "largest %.2f m/s at %.1f us (regression bound: 4.5 m/s)"
+         dv.max() <= 3.5,
+         "largest %.2f m/s at %.1f us (regression bound: 3.5 m/s)"
          % (dv.max(), t[keep][k])),
         ("energy error <= 0.5 %", err is not None and err <= 0.5, None,
          "%s %%" % err),

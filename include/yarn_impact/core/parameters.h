@@ -85,6 +85,12 @@ namespace YarnImpact
        * progressive fibre damage starts [-] (the sudden model and the DEM
        * use failure_strain). */
       double damage_onset_strain = 0.0347;
+      /** Progressive failure model: relative growth of the damage onset
+       * strain across the thickness [-]: a cell's onset is
+       * damage_onset_strain (1 + spread depth), depth 0 at the face the
+       * projectile strikes and 1 at the opposite face (doc/theory.md
+       * section 5.4). 0: the same onset in every cell. */
+      double damage_onset_spread = 0.;
       /** Energy dissipated per unit area of a crack across the yarn by the
        * progressive failure model, G_f [J/m^2]. */
       double fracture_energy = 5.41e4;

@@ -7,6 +7,7 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace YarnImpact
@@ -131,42 +132,65 @@ namespace YarnImpact
         progressive
       };
       Kind kind = Kind::none;
-      /** I_0 = ln(1 + failure strain) [-]. */
+      /** I_0 = ln(1 + failure strain) [-]; for the progressive law, the
+       * onset of the cells at the face that the projectile strikes. */
       double onset_log_stretch = 0.;
+      /** Progressive law: relative growth s [-] of the onset strain across
+       * the thickness, from expm1(onset_log_stretch) at the struck face to
+       * (1 + s) times it at the opposite face (onset_log_stretch_at()). */
+      double onset_spread = 0.;
       /** G_f, energy per unit crack area [J/m^2] (progressive). */
       double fracture_energy = 0.;
       /** k_e of the separable fibre term 1/2 k_e I_e^2 [Pa] (progressive).
        */
       double fibre_modulus = 0.;
 
-      /** I_u = 2 G_f / (h k_e I_0) of a cell @p h [m] long along the fibre:
-       * the ln(lambda_f) at which its fibre stress is gone [-]. */
+      /** The onset I_0 [-] of a cell whose shallowest point lies at the
+       * normalised depth @p depth [-] below the struck face (CellData::depth, 0 at the
+       * face the projectile strikes, 1 at the opposite one): the onset
+       * strain grows linearly with the depth, eps_0 (1 + s depth). The
+       * fibres nearest the nose are the most stretched of a section and
+       * break first, those at the back last (doc/theory.md section 5.4);
+       * a cell averages them, and the spread gives each cell the onset of
+       * the fibres it holds. */
       double
-      final_log_stretch(const double h) const
+      onset_log_stretch_at(const double depth) const
       {
-        return 2. * fracture_energy / (h * fibre_modulus * onset_log_stretch);
+        if (onset_spread == 0.)
+          return onset_log_stretch;
+        return std::log1p(std::expm1(onset_log_stretch) *
+                          (1. + onset_spread * depth));
       }
 
-      /** The damage [0, 1] of a cell @p h [m] long at the history variable
-       * @p kappa (largest ln(lambda_f) reached) [-]. */
+      /** I_u = 2 G_f / (h k_e I_0) of a cell @p h [m] long along the fibre
+       * with onset @p I_0 [-]: the ln(lambda_f) at which its fibre stress
+       * is gone [-]. */
       double
-      damage(const double kappa, const double h) const
+      final_log_stretch(const double h, const double I_0) const
       {
-        if (kappa <= onset_log_stretch)
+        return 2. * fracture_energy / (h * fibre_modulus * I_0);
+      }
+
+      /** The damage [0, 1] of a cell @p h [m] long with onset @p I_0 [-]
+       * at the history variable @p kappa (largest ln(lambda_f) reached)
+       * [-]. */
+      double
+      damage(const double kappa, const double h, const double I_0) const
+      {
+        if (kappa <= I_0)
           return 0.;
-        const double I_u = final_log_stretch(h);
+        const double I_u = final_log_stretch(h, I_0);
         if (kappa >= I_u)
           return 1.;
-        return 1. - onset_log_stretch * (I_u - kappa) /
-                      (kappa * (I_u - onset_log_stretch));
+        return 1. - I_0 * (I_u - kappa) / (kappa * (I_u - I_0));
       }
     };
 
     /**
      * The energy [J] that the progressive law dissipates in a cell whose
      * history variable grows from @p kappa_old to @p kappa_new [-], with
-     * the undamaged fibre energy @p fibre_energy [J] at kappa_new and the
-     * cell length @p h [m] along the fibre. Along the envelope the
+     * the undamaged fibre energy @p fibre_energy [J] at kappa_new, the
+     * cell length @p h [m] along the fibre and the cell's onset @p I_0 [-]. Along the envelope the
      * dissipation per unit volume is 1/2 k_e kappa^2 dd =
      * 1/2 k_e I_0 I_u / (I_u - I_0) dkappa, a constant rate (doc/theory.md
      * section 5.3), so the increment is that rate times the part of
@@ -182,10 +206,10 @@ namespace YarnImpact
                           const double kappa_old,
                           const double kappa_new,
                           const double fibre_energy,
-                          const double h)
+                          const double h,
+                          const double I_0)
     {
-      const double I_0 = law.onset_log_stretch;
-      const double I_u = law.final_log_stretch(h);
+      const double I_u = law.final_log_stretch(h, I_0);
       const double lo  = std::max(kappa_old, I_0);
       const double hi  = std::min(kappa_new, I_u);
       if (hi <= lo)
@@ -219,6 +243,10 @@ namespace YarnImpact
       /** Reference length of the cell along the fibre [m] (the crack
        * band's width). */
       std::vector<double> fibre_length;
+      /** Normalised depth [-] of the cell's shallowest reference point
+       * below the face of the yarn that the projectile strikes: 0 on that face, 1 on
+       * the opposite one (FailureLaw::onset_log_stretch_at()). */
+      std::vector<double> depth;
 
       /** Largest ln(lambda_f) over the Gauss points: the strains are
        * expm1() of it, taken only where they are reported. */
