@@ -273,7 +273,8 @@ namespace YarnImpact
         // The contact bound holds while a sphere meets the projectile over
         // many steps: a fast projectile must not close more than a tenth of
         // a sphere radius in one step, or it would jump over spheres (it
-        // binds above about 700 m/s here; doc/dem.md).
+        // binds above about 510 m/s with the contacts step of the paper's
+        // case, 700 m/s with the scalar one; doc/dem.md section 3).
         if (projectile_speed > 0.)
           return std::min(critical, 0.1 * chains.radius / projectile_speed);
         return critical;

@@ -103,11 +103,12 @@ namespace YarnImpact
         Patterns::Selection("contacts|coordination"),
         "How the impact model bounds its stable time step (doc/theory.md "
         "section 3.2). contacts: from the springs it has now (trusses, the "
-        "listed fibre pairs, the projectile near the spheres), direction by "
-        "direction through each sphere's fibre axis, recomputed every "
-        "Time/Time step update interval steps. coordination: one bound for "
-        "the whole run, with Coordination number contacts per sphere all "
-        "added up (the step of versions before the contacts bound).");
+        "fibre pairs in contact, the projectile near the spheres): twice the "
+        "largest eigenvalue of each sphere's own stiffness over its mass, "
+        "recomputed every Time/Time step update interval steps. "
+        "coordination: one bound for the whole run, with Coordination "
+        "number contacts per sphere all added up (the step of versions "
+        "before the contacts bound).");
       prm.declare_entry("Coordination number",
                         "6",
                         Patterns::Integer(),
@@ -232,9 +233,9 @@ namespace YarnImpact
       projectile_contact_law =
         Contact::law_type(prm.get("Projectile contact law"));
       skin         = get_positive_double(prm, "DEM", "Skin");
-      stable_step  = prm.get("Stable time step") == "contacts" ?
-                       StableStep::contacts :
-                       StableStep::coordination;
+      stable_step  = prm.get("Stable time step") == "contacts"
+                       ? StableStep::contacts
+                       : StableStep::coordination;
       const long c = prm.get_integer("Coordination number");
       require(c >= 0, "DEM/Coordination number", "must not be negative");
       coordination      = static_cast<unsigned int>(c);

@@ -18,33 +18,35 @@ namespace YarnImpact
     {
       namespace
       {
-        /** The largest eigenvalue of the symmetric 3x3 matrix with the
-         * diagonal @p a, @p b, @p c and the off-diagonal @p d (xy), @p e
-         * (xz), @p f (yz), in closed form (trigonometric solution of the
-         * characteristic cubic). */
+        /** The largest eigenvalue of the symmetric 3x3 matrix @p K (xx,
+         * yy, zz, xy, xz, yz) times @p scale, in closed form (the
+         * trigonometric solution of the characteristic cubic), or @p floor
+         * if that cannot exceed it: the closed form's q + 2 p bounds the
+         * eigenvalue with one square root, and the cosines are only
+         * evaluated where it could set a new maximum. */
         double
-        largest_eigenvalue(const double a,
-                           const double b,
-                           const double c,
-                           const double d,
-                           const double e,
-                           const double f)
+        largest_eigenvalue(const float *K,
+                           const double scale,
+                           const double floor)
         {
+          const double a = K[0], b = K[1], c = K[2], d = K[3], e = K[4],
+                       f  = K[5];
           const double q  = (a + b + c) / 3.;
           const double p1 = d * d + e * e + f * f;
-          const double p2 = (a - q) * (a - q) + (b - q) * (b - q) +
-                            (c - q) * (c - q) + 2. * p1;
+          const double p2 =
+            (a - q) * (a - q) + (b - q) * (b - q) + (c - q) * (c - q) + 2. * p1;
           if (!(p2 > 0.))
-            return q;
+            return std::max(floor, scale * q);
           const double p = std::sqrt(p2 / 6.);
+          if (scale * (q + 2. * p) <= floor)
+            return floor;
           // det((A - q I) / p) / 2
           const double A = (a - q) / p, B = (b - q) / p, C = (c - q) / p;
           const double D = d / p, E = e / p, F = f / p;
-          const double r =
-            0.5 * (A * (B * C - F * F) - D * (D * C - F * E) +
-                   E * (D * F - B * E));
+          const double r   = 0.5 * (A * (B * C - F * F) - D * (D * C - F * E) +
+                                  E * (D * F - B * E));
           const double phi = std::acos(std::clamp(r, -1., 1.)) / 3.;
-          return q + 2. * p * std::cos(phi);
+          return std::max(floor, scale * (q + 2. * p * std::cos(phi)));
         }
 
 
@@ -132,11 +134,11 @@ namespace YarnImpact
               const std::size_t i = D.local_index(s, f), j = i + nf;
               if (spheres.broken[i])
                 continue;
-              double e[3]    = {x[3 * j] - x[3 * i],
-                                x[3 * j + 1] - x[3 * i + 1],
-                                x[3 * j + 2] - x[3 * i + 2]};
-              const double l = normalise(e);
-              const double k = chains.truss_k * chains.fw[f];
+              double e[3]     = {x[3 * j] - x[3 * i],
+                                 x[3 * j + 1] - x[3 * i + 1],
+                                 x[3 * j + 2] - x[3 * i + 2]};
+              const double l  = normalise(e);
+              const double k  = chains.truss_k * chains.fw[f];
               const double kg = k * std::max(0., 1. - chains.L0 / l);
               add(i, e, k, kg);
               add(j, e, k, kg);
@@ -150,8 +152,7 @@ namespace YarnImpact
         const double d2 = d * d;
         for (const ListBlock &B : blocks)
           for (std::size_t i = B.b; i < B.e; ++i)
-            for (std::uint32_t p = B.pstart[i - B.b];
-                 p < B.pstart[i - B.b + 1];
+            for (std::uint32_t p = B.pstart[i - B.b]; p < B.pstart[i - B.b + 1];
                  ++p)
               {
                 // The force evaluation at these positions marked the pairs
@@ -203,7 +204,7 @@ namespace YarnImpact
             for (unsigned int s = D.st_begin; s < D.st_end; ++s)
               {
                 const double xlo = spheres.st_xlo[s], xhi = spheres.st_xhi[s];
-                const double ax  = (xlo > 0. ? xlo : (xhi < 0. ? -xhi : 0.));
+                const double ax = (xlo > 0. ? xlo : (xhi < 0. ? -xhi : 0.));
                 if (ax >= reach || spheres.st_ymax[s] <= projectile_y - reach)
                   continue;
                 for (unsigned int f = 0; f < nf; ++f)
@@ -239,20 +240,7 @@ namespace YarnImpact
               K[3] = K[4] = 0.f; // x = 0: xy, xz
             if (chains.fw[i % nf] != 1.)
               K[4] = K[5] = 0.f; // z = 0: xz, yz
-            // The closed form's q + 2 p bounds the largest eigenvalue with
-            // one square root; the cosines only where it could set a new
-            // maximum.
-            const double q  = (double(K[0]) + K[1] + K[2]) / 3.;
-            const double p2 = (K[0] - q) * (K[0] - q) + (K[1] - q) * (K[1] - q) +
-                              (K[2] - q) * (K[2] - q) +
-                              2. * (double(K[3]) * K[3] + double(K[4]) * K[4] +
-                                    double(K[5]) * K[5]);
-            if (inv_m * (q + 2. * std::sqrt(p2 / 6.)) <= lambda)
-              continue;
-            lambda = std::max(lambda,
-                              inv_m *
-                                largest_eigenvalue(
-                                  K[0], K[1], K[2], K[3], K[4], K[5]));
+            lambda = largest_eigenvalue(K, inv_m, lambda);
           }
         // The float sums and the closed-form eigenvalue are good to a few
         // 1e-7: the margin keeps the result a bound.

@@ -127,7 +127,7 @@ namespace YarnImpact
           double y_top = -std::numeric_limits<double>::max();
           for (unsigned int a = 0; a < n_nodes; ++a)
             {
-              y_top = std::max(y_top, cell->vertex(a)[1]);
+              y_top            = std::max(y_top, cell->vertex(a)[1]);
               double node_mass = 0.;
               for (unsigned int q = 0; q < n_q; ++q)
                 node_mass +=
@@ -563,9 +563,10 @@ namespace YarnImpact
           const double h = shared.yarn.length / parameters.n_axial_cells /
                            std::pow(2., parameters.global_refinements);
           // The largest onset is at the back face (doc/theory.md 5.4).
-          const double I_0 =
-            std::log1p(shared.yarn.damage_onset_strain *
-                       (1. + shared.yarn.damage_onset_spread));
+          FailureLaw onset;
+          onset.onset_log_stretch = std::log1p(shared.yarn.damage_onset_strain);
+          onset.onset_spread      = shared.yarn.damage_onset_spread;
+          const double I_0        = onset.onset_log_stretch_at(1.);
           const double G_min = 0.5 * h * parameters.charmetant.k_e * I_0 * I_0;
           std::ostringstream s;
           s << "= " << shared.yarn.fracture_energy

@@ -237,9 +237,8 @@ main(int argc, char **argv)
                   "damage starts within 0.1 %% of 1.5 x 4.52 %%: %s, "
                   "dissipated / (G_f A) within 2 %%: %s\n",
                   h * 1e3,
-                  std::abs(r.onset_strain / (1.5 * 0.0452) - 1.) < 1e-3
-                    ? "yes"
-                    : "no",
+                  std::abs(r.onset_strain / (1.5 * 0.0452) - 1.) < 1e-3 ? "yes"
+                                                                        : "no",
                   std::abs(ratio - 1.) < 0.02 ? "yes" : "no");
     }
   // 2. A bar of 1.016 mm in 4 cells of 0.254 mm and in 8 of half that,

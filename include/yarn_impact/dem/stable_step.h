@@ -32,10 +32,10 @@ namespace YarnImpact
        * is exact (4 k/m).
        *
        * The springs: the trusses (axial, and the geometric stiffness T/l
-       * across them), the fibre-fibre and mirror pairs in contact (normal
-       * and two tangential springs), and the projectile contact of every
-       * sphere near it (the margin is given by the caller from the
-       * projectile's speed). Only the pairs in contact: they are listed
+       * across them), the fibre-fibre and mirror pairs in contact (the
+       * normal spring, and the tangential one across it), and the projectile
+       * contact of every sphere near it (the margin is given by the caller from
+       * the projectile's speed). Only the pairs in contact: they are listed
        * whatever the partition and the list rebuilds, so the step is the
        * same on any number of ranks. Each rank evaluates its owned spheres;
        * one MPI_Allreduce gives the maximum. The directions and contacts

@@ -146,8 +146,8 @@ namespace YarnImpact
       double fibre_modulus = 0.;
 
       /** The onset I_0 [-] of a cell whose shallowest point lies at the
-       * normalised depth @p depth [-] below the struck face (CellData::depth, 0 at the
-       * face the projectile strikes, 1 at the opposite one): the onset
+       * normalised depth @p depth [-] below the struck face (CellData::depth, 0
+       * at the face the projectile strikes, 1 at the opposite one): the onset
        * strain grows linearly with the depth, eps_0 (1 + s depth). The
        * fibres nearest the nose are the most stretched of a section and
        * break first, those at the back last (doc/theory.md section 5.4);
@@ -190,9 +190,9 @@ namespace YarnImpact
      * The energy [J] that the progressive law dissipates in a cell whose
      * history variable grows from @p kappa_old to @p kappa_new [-], with
      * the undamaged fibre energy @p fibre_energy [J] at kappa_new, the
-     * cell length @p h [m] along the fibre and the cell's onset @p I_0 [-]. Along the envelope the
-     * dissipation per unit volume is 1/2 k_e kappa^2 dd =
-     * 1/2 k_e I_0 I_u / (I_u - I_0) dkappa, a constant rate (doc/theory.md
+     * cell length @p h [m] along the fibre and the cell's onset @p I_0 [-].
+     * Along the envelope the dissipation per unit volume is 1/2 k_e kappa^2 dd
+     * = 1/2 k_e I_0 I_u / (I_u - I_0) dkappa, a constant rate (doc/theory.md
      * section 5.3), so the increment is that rate times the part of
      * [kappa_old, kappa_new] inside [I_0, I_u], times the volume of the
      * band. The volume is fibre_energy / (1/2 k_e kappa_new^2): the whole
@@ -244,8 +244,8 @@ namespace YarnImpact
        * band's width). */
       std::vector<double> fibre_length;
       /** Normalised depth [-] of the cell's shallowest reference point
-       * below the face of the yarn that the projectile strikes: 0 on that face, 1 on
-       * the opposite one (FailureLaw::onset_log_stretch_at()). */
+       * below the face of the yarn that the projectile strikes: 0 on that face,
+       * 1 on the opposite one (FailureLaw::onset_log_stretch_at()). */
       std::vector<double> depth;
 
       /** Largest ln(lambda_f) over the Gauss points: the strains are
