@@ -12,7 +12,7 @@ shift 2 2> /dev/null
 mkdir -p "$out"
 
 case_lines() { # name -> the prm lines of that case
-  local v=120 model=progressive fric="" mesh="" spread=""
+  local v=120 model=progressive fric="" mesh="" spread="" tail=""
   case $1 in
     sudden_mu0)     model=sudden; fric=0 ;;
     sudden)         model=sudden ;;
@@ -29,12 +29,20 @@ case_lines() { # name -> the prm lines of that case
     progressive_200) v=200 ;;
     sudden_300)      model=sudden; v=300 ;;
     progressive_300) v=300 ;;
+    # The bilinear envelope with the tail identified from the DEM
+    # (doc/identification.md section 8).
+    tail)           tail=1 ;;
+    tail_axial2x)   tail=1; mesh="set Cells along the axis = 200" ;;
+    tail_section2x) tail=1; mesh="set Section refinements = 1" ;;
+    tail_200)       tail=1; v=200 ;;
+    tail_300)       tail=1; v=300 ;;
     *) echo "unknown case $1" >&2; return 1 ;;
   esac
   echo "include prm/km2_120ms_fe_progressive.prm"
   echo "subsection Yarn"
   echo "  set Failure model = $model"
   [ -n "$spread" ] && echo "  set Damage onset spread = $spread"
+  [ -n "$tail" ] && printf '  set Softening tail stress = 0.128\n  set Softening tail energy = 2.085e4\n'
   echo "end"
   echo "subsection Projectile"
   echo "  set Initial velocity = $v"
@@ -54,7 +62,7 @@ cases=("$@")
 [ ${#cases[@]} -eq 0 ] && cases=(sudden_mu0 sudden progressive_mu0 progressive
   progressive_nospread progressive_spread05 progressive_axial2x progressive_section2x progressive_section4x
   sudden_section2x sudden_section4x sudden_200 progressive_200 sudden_300
-  progressive_300)
+  progressive_300 tail tail_axial2x tail_section2x tail_200 tail_300)
 for c in "${cases[@]}"; do
   case_lines "$c" > "$out/$c.prm" || exit 1
   /usr/bin/time -f "$c: %e s" "$build/yarn-impact" "$out/$c.prm" \

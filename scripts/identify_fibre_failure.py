@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Identify the FE progressive fibre-failure law from the DEM's output.
 
-The law (doc/theory.md section 5) has two parameters: the onset, the
-largest Gauss-point fibre strain of a cell at which its fibres start to
-break, and G_f, the energy dissipated per unit area of a crack across the
-yarn. They are taken from the DEM, not from the FE impact curve:
+The law (doc/theory.md section 5) has the onset, the largest Gauss-point
+fibre strain of a cell at which its fibres start to break, its spread
+across the section, G_f, the energy dissipated per unit area of a crack
+across the yarn, and the tail of a bilinear softening curve. They are
+taken from the DEM, not from the FE impact curve:
 
 1. The DEM tension test to failure (prm/elementary/tension.prm, its
    elementary_tension.csv): the strain of the first fibre break is the
@@ -44,6 +45,20 @@ yarn. They are taken from the DEM, not from the FE impact curve:
    spread s is its ratio to the onset, less 1 (Yarn/Damage onset spread:
    eps_0 (1 + s z), z the depth). Again on the FE strain history and the
    DEM's break times, not on the velocity.
+5. The tail of the softening (doc/theory.md section 5.5). After its
+   peak the DEM's contact force falls within about a microsecond to a
+   plateau, an eighth of the peak, which it holds while the last fibres
+   break, until the cut-through. The plateau force is the median force
+   from the first row below half the peak to the cut-through; its ratio
+   to the peak is the tail stress beta (Yarn/Softening tail stress: the
+   angle of the yarn at the nose is taken to be the same at the peak and
+   on the plateau, so the force ratio is the ratio of the fibre
+   tensions). The kink is the first row after the peak at which the force
+   is within 25 % of the plateau force; the energy the failure dissipates
+   from there to the cut-through (less the friction trend, as in 2), per
+   band and unit area, is the tail energy G_t (Yarn/Softening tail
+   energy).
+
 Usage:
   scripts/identify_fibre_failure.py TENSION_SUMMARY TENSION_CSV DEM_HISTORY_CSV
       FE_HISTORY_CSV [--bands 2]
@@ -163,6 +178,22 @@ def main():
     print("  energy dissipated by the failure       %.3f mJ" % dE)
     print("  FE section area                        %.6f mm^2" % (area * 1e6))
 
+    # 5. The tail: the plateau after the force's fall, and the energy
+    # dissipated on it.
+    k_peak = max(range(k1, k2), key=lambda k: rows[k][i_F])
+    k_half = next(k for k in range(k_peak, k2) if rows[k][i_F] < 0.5 * peak)
+    plateau = sorted(rows[k][i_F] for k in range(k_half, k2))
+    F_p = plateau[len(plateau) // 2]
+    beta = F_p / peak
+    k_kink = next(k for k in range(k_peak, k2) if rows[k][i_F] <= 1.25 * F_p)
+    t_kink = rows[k_kink][i_t]
+    dE_tail = (rows[k2][i_d] - rows[k_kink][i_d]) - rate * (t2 - t_kink)
+    G_t = dE_tail * 1e-3 / (a.bands * area)
+    print("  plateau force (median, %.2f-%.2f us)   %.2f N (%.3f of the peak)"
+          % (rows[k_half][i_t], t2, F_p, beta))
+    print("  force within 25 %% of the plateau from  %.2f us" % t_kink)
+    print("  energy dissipated from there to the cut  %.3f mJ" % dE_tail)
+
     # 3. The onset.
     h, rows = read_csv(a.fe_history_csv)
     i_t = column(h, "t [us]")
@@ -196,10 +227,20 @@ def main():
           "%.4f)" % (spread, onset_back))
     print("  Yarn/Fracture energy G_f               %.4g J/m^2 (%d bands)"
           % (G_f, a.bands))
+    print("  Yarn/Softening tail stress             %.3f" % beta)
+    print("  Yarn/Softening tail energy G_t         %.4g J/m^2 (%d bands)"
+          % (G_t, a.bands))
+    I0_face = math.log1p(onset)
+    I_k = beta * I0_face + 2 * (G_f - G_t) / (a.cell_length * a.k_e * I0_face)
+    I_u_tail = 2 * G_t / (a.cell_length * a.k_e * beta * I0_face)
+    print("  its kink and end in a %.3f mm cell at the struck face   "
+          "%.2f %%, %.2f %% fibre strain"
+          % (a.cell_length * 1e3, 100 * math.expm1(I_k),
+             100 * math.expm1(I_u_tail)))
     print("  elastic energy per area of a %.3f mm cell at the back-face "
           "onset  %.4g J/m^2"
           % (a.cell_length * 1e3, G_min))
-    print("  final fibre strain of that cell        %.2f %%"
+    print("  final fibre strain of that cell (linear curve)  %.2f %%"
           % (100 * math.expm1(I_u)))
     if G_f <= G_min:
         sys.exit("G_f is not above the cell's elastic energy: snap-back")

@@ -156,6 +156,28 @@ namespace YarnImpact
         "by scripts/identify_fibre_failure.py (doc/identification.md "
         "section 8). Must exceed the elastic energy per unit area of the "
         "longest cell at the largest damage onset strain.");
+      prm.declare_entry(
+        "Softening tail stress",
+        "0",
+        Patterns::Double(),
+        "Progressive failure model: the fibre stress at the kink of a "
+        "bilinear softening curve, as a fraction beta of the stress at the "
+        "damage onset [-]. From the onset the fibre stress falls linearly "
+        "to beta times the onset stress, then along a tail down to zero. "
+        "The DEM's yarn, once most fibres are broken, holds a small load "
+        "over a long opening while the last fibres go (doc/theory.md "
+        "section 5.5). 0: the linear softening curve. Identified from the "
+        "DEM impact by scripts/identify_fibre_failure.py "
+        "(doc/identification.md section 8).");
+      prm.declare_entry(
+        "Softening tail energy",
+        "0",
+        Patterns::Double(),
+        "Progressive failure model with Softening tail stress > 0: the part "
+        "of Fracture energy that the tail dissipates, G_t [J/m^2]; the "
+        "first branch dissipates the rest. Identified from the DEM impact "
+        "by scripts/identify_fibre_failure.py (doc/identification.md "
+        "section 8).");
       prm.leave_subsection();
     }
 
@@ -184,6 +206,23 @@ namespace YarnImpact
               "Yarn/Damage onset spread",
               "must be zero or positive: the fibres against the nose break "
               "first");
+      softening_tail_stress = prm.get_double("Softening tail stress");
+      require(softening_tail_stress >= 0. && softening_tail_stress < 1.,
+              "Yarn/Softening tail stress",
+              "must lie in [0, 1): a fraction of the fibre stress at the "
+              "damage onset (0: linear softening)");
+      softening_tail_energy = prm.get_double("Softening tail energy");
+      require(std::isfinite(softening_tail_energy) &&
+                (softening_tail_stress == 0.
+                   ? softening_tail_energy == 0.
+                   : softening_tail_energy > 0. &&
+                       softening_tail_energy < fracture_energy),
+              "Yarn/Softening tail energy",
+              softening_tail_stress == 0.
+                ? "must be 0 when Softening tail stress is 0 (the linear "
+                  "softening curve has no tail)"
+                : "must lie between 0 and Fracture energy (exclusive): the "
+                  "part of it that the tail dissipates [J/m^2]");
       prm.leave_subsection();
     }
 

@@ -234,10 +234,14 @@ namespace YarnImpact
       failure_law.onset_spread =
         progressive ? shared.yarn.damage_onset_spread : 0.;
       failure_law.fracture_energy = shared.yarn.fracture_energy;
-      failure_law.fibre_modulus   = law.axial_modulus();
-      failure_law.kind = !shared.yarn.failure ? FailureLaw::Kind::none
-                         : progressive        ? FailureLaw::Kind::progressive
-                                              : FailureLaw::Kind::sudden;
+      failure_law.tail_stress_ratio =
+        progressive ? shared.yarn.softening_tail_stress : 0.;
+      failure_law.tail_energy =
+        progressive ? shared.yarn.softening_tail_energy : 0.;
+      failure_law.fibre_modulus = law.axial_modulus();
+      failure_law.kind          = !shared.yarn.failure ? FailureLaw::Kind::none
+                                  : progressive ? FailureLaw::Kind::progressive
+                                                : FailureLaw::Kind::sudden;
 
       // Owned nodes, their constraints and stations. The x dof of a vertex
       // identifies it; all three dofs of a vertex have the same owner.
@@ -580,6 +584,32 @@ namespace YarnImpact
           require(shared.yarn.fracture_energy > G_min,
                   "Yarn/Fracture energy",
                   s.str());
+          if (shared.yarn.softening_tail_stress > 0.)
+            {
+              // The bilinear envelope must fall on both branches in the
+              // longest cell at the largest onset, where both margins are
+              // smallest: I_0 < I_k < I_u (doc/theory.md section 5.5).
+              onset.fracture_energy   = shared.yarn.fracture_energy;
+              onset.fibre_modulus     = parameters.charmetant.k_e;
+              onset.tail_stress_ratio = shared.yarn.softening_tail_stress;
+              onset.tail_energy       = shared.yarn.softening_tail_energy;
+              const double I_k        = onset.kink_log_stretch(h, I_0);
+              const double I_u        = onset.final_log_stretch(h, I_0);
+              std::ostringstream k;
+              k << "leaves the first branch of the softening curve of a "
+                << h * 1e3 << " mm cell at the largest onset ending at the "
+                << "fibre log-stretch " << I_k << ", not above the onset "
+                << I_0 << ": it would snap back (lower Softening tail energy, "
+                << "or raise Fracture energy)";
+              require(I_k > I_0, "Yarn/Softening tail energy", k.str());
+              std::ostringstream u;
+              u << "is too small for Softening tail stress = "
+                << shared.yarn.softening_tail_stress << ": the tail of a "
+                << h * 1e3 << " mm cell at the largest onset would end at "
+                << "the fibre log-stretch " << I_u << ", not beyond its kink "
+                << I_k << " (raise it, or lower Softening tail stress)";
+              require(I_u > I_k, "Yarn/Softening tail energy", u.str());
+            }
         }
       // The cell count is the memory estimate's, which also names the
       // parameter that makes it large.

@@ -94,6 +94,13 @@ namespace YarnImpact
       /** Energy dissipated per unit area of a crack across the yarn by the
        * progressive failure model, G_f [J/m^2]. */
       double fracture_energy = 5.41e4;
+      /** Progressive failure model: the fibre stress at the kink of a
+       * bilinear softening envelope, as a fraction of the onset stress
+       * [-]; 0: the linear envelope (doc/theory.md section 5.5). */
+      double softening_tail_stress = 0.;
+      /** Progressive failure model: the part of fracture_energy that the
+       * tail of the bilinear envelope dissipates [J/m^2]. */
+      double softening_tail_energy = 0.;
 
       /** Area of the elliptical section, \f$\pi a_y a_z\f$ [m^2]. */
       double

@@ -113,8 +113,11 @@ namespace YarnImpact
      *   envelope k_e I_0 (I_u - kappa)/(I_u - I_0) down to zero at
      *   I_u = 2 G_f / (h k_e I_0), h the cell's reference length along
      *   the fibre, so that a band one cell long dissipates G_f per unit
-     *   area whatever h. The damage d = 1 - envelope/(k_e kappa) scales
-     *   the fibre term only (the law's energy must separate it:
+     *   area whatever h. With a tail (tail_stress_ratio beta > 0) the
+     *   envelope is bilinear: from k_e I_0 down to beta k_e I_0 at the
+     *   kink I_k, then down to zero at I_u, the tail dissipating G_t of
+     *   G_f (doc/theory.md section 5.5). The damage d = 1 - envelope/(k_e
+     * kappa) scales the fibre term only (the law's energy must separate it:
      *   Law::separable_fibre_term); the compaction and distortion terms
      *   stay, because the broken fibres still fill the section and are
      *   still pressed by the projectile (doc/fe-model.md section 4).
@@ -141,6 +144,14 @@ namespace YarnImpact
       double onset_spread = 0.;
       /** G_f, energy per unit crack area [J/m^2] (progressive). */
       double fracture_energy = 0.;
+      /** beta [-]: the fibre stress at the kink of a bilinear envelope, as
+       * a fraction of the onset stress k_e I_0 (progressive). 0: the linear
+       * envelope. */
+      double tail_stress_ratio = 0.;
+      /** G_t [J/m^2]: the part of G_f that the tail of the bilinear
+       * envelope dissipates, from the kink to complete failure
+       * (progressive, with tail_stress_ratio > 0). */
+      double tail_energy = 0.;
       /** k_e of the separable fibre term 1/2 k_e I_e^2 [Pa] (progressive).
        */
       double fibre_modulus = 0.;
@@ -162,18 +173,57 @@ namespace YarnImpact
                           (1. + onset_spread * depth));
       }
 
-      /** I_u = 2 G_f / (h k_e I_0) of a cell @p h [m] long along the fibre
-       * with onset @p I_0 [-]: the ln(lambda_f) at which its fibre stress
-       * is gone [-]. */
+      /** The ln(lambda_f) [-] at which the fibre stress of a cell @p h [m]
+       * long along the fibre with onset @p I_0 [-] is gone: I_u = 2 G_f /
+       * (h k_e I_0) for the linear envelope, 2 G_t / (h k_e beta I_0) with
+       * a tail (the tail's area beta k_e I_0 I_u / 2 per unit volume is
+       * G_t / h). */
       double
       final_log_stretch(const double h, const double I_0) const
       {
-        return 2. * fracture_energy / (h * fibre_modulus * I_0);
+        if (tail_stress_ratio == 0.)
+          return 2. * fracture_energy / (h * fibre_modulus * I_0);
+        return 2. * tail_energy / (h * fibre_modulus * tail_stress_ratio * I_0);
+      }
+
+      /** The kink I_k [-] of the bilinear envelope of a cell @p h [m] long
+       * with onset @p I_0 [-], where the fibre stress has fallen to
+       * beta k_e I_0: the first branch dissipates G_f - G_t per unit area,
+       * 1/2 k_e I_0 (I_k - beta I_0) h. Equal to final_log_stretch() for the
+       * linear envelope. */
+      double
+      kink_log_stretch(const double h, const double I_0) const
+      {
+        if (tail_stress_ratio == 0.)
+          return final_log_stretch(h, I_0);
+        return tail_stress_ratio * I_0 +
+               2. * (fracture_energy - tail_energy) / (h * fibre_modulus * I_0);
+      }
+
+      /** The envelope of the fibre Kirchhoff stress over k_e [-] at the
+       * history variable @p kappa [-], for a cell @p h [m] long with onset
+       * @p I_0 [-]: kappa up to the onset, then linear down to beta I_0 at
+       * the kink and to zero at the final stretch. */
+      double
+      envelope(const double kappa, const double h, const double I_0) const
+      {
+        if (kappa <= I_0)
+          return kappa;
+        const double I_u = final_log_stretch(h, I_0);
+        if (kappa >= I_u)
+          return 0.;
+        if (tail_stress_ratio == 0.)
+          return I_0 * (I_u - kappa) / (I_u - I_0);
+        const double I_k    = kink_log_stretch(h, I_0);
+        const double tail_0 = tail_stress_ratio * I_0;
+        if (kappa <= I_k)
+          return I_0 - (I_0 - tail_0) * (kappa - I_0) / (I_k - I_0);
+        return tail_0 * (I_u - kappa) / (I_u - I_k);
       }
 
       /** The damage [0, 1] of a cell @p h [m] long with onset @p I_0 [-]
        * at the history variable @p kappa (largest ln(lambda_f) reached)
-       * [-]. */
+       * [-]: 1 - envelope / kappa. */
       double
       damage(const double kappa, const double h, const double I_0) const
       {
@@ -182,7 +232,9 @@ namespace YarnImpact
         const double I_u = final_log_stretch(h, I_0);
         if (kappa >= I_u)
           return 1.;
-        return 1. - I_0 * (I_u - kappa) / (kappa * (I_u - I_0));
+        if (tail_stress_ratio == 0.)
+          return 1. - I_0 * (I_u - kappa) / (kappa * (I_u - I_0));
+        return 1. - envelope(kappa, h, I_0) / kappa;
       }
     };
 
@@ -193,13 +245,14 @@ namespace YarnImpact
      * cell length @p h [m] along the fibre and the cell's onset @p I_0 [-].
      * Along the envelope the dissipation per unit volume is 1/2 k_e kappa^2 dd
      * = 1/2 k_e I_0 I_u / (I_u - I_0) dkappa, a constant rate (doc/theory.md
-     * section 5.3), so the increment is that rate times the part of
-     * [kappa_old, kappa_new] inside [I_0, I_u], times the volume of the
-     * band. The volume is fibre_energy / (1/2 k_e kappa_new^2): the whole
-     * cell when its strain is uniform (then the crack dissipates G_f per
-     * unit area exactly, whatever the step), less when its Gauss points
-     * are stretched less than the largest, whose fibre energy the damage
-     * then removes in proportion, so that the energy balance closes.
+     * section 5.3; with a tail, one constant rate per branch, section 5.5),
+     * so the increment is that rate times the part of [kappa_old,
+     * kappa_new] inside [I_0, I_u], times the volume of the band. The volume is
+     * fibre_energy / (1/2 k_e kappa_new^2): the whole cell when its strain is
+     * uniform (then the crack dissipates G_f per unit area exactly, whatever
+     * the step), less when its Gauss points are stretched less than the
+     * largest, whose fibre energy the damage then removes in proportion, so
+     * that the energy balance closes.
      */
     inline double
     dissipation_increment(const FailureLaw &law,
@@ -210,12 +263,28 @@ namespace YarnImpact
                           const double I_0)
     {
       const double I_u = law.final_log_stretch(h, I_0);
-      const double lo  = std::max(kappa_old, I_0);
-      const double hi  = std::min(kappa_new, I_u);
-      if (hi <= lo)
-        return 0.;
-      return fibre_energy * I_0 * I_u * (hi - lo) /
-             ((I_u - I_0) * kappa_new * kappa_new);
+      if (law.tail_stress_ratio == 0.)
+        {
+          const double lo = std::max(kappa_old, I_0);
+          const double hi = std::min(kappa_new, I_u);
+          if (hi <= lo)
+            return 0.;
+          return fibre_energy * I_0 * I_u * (hi - lo) /
+                 ((I_u - I_0) * kappa_new * kappa_new);
+        }
+      // On a linear piece g = a + b kappa of the envelope the rate
+      // 1/2 k_e (g - kappa g') = 1/2 k_e a is its intercept a: beta I_0
+      // I_u / (I_u - I_k) on the tail, I_0 (I_k - beta I_0) / (I_k - I_0)
+      // on the first branch.
+      const double I_k    = law.kink_log_stretch(h, I_0);
+      const double tail_0 = law.tail_stress_ratio * I_0;
+      auto overlap        = [&](const double a, const double b) {
+        return std::max(0., std::min(kappa_new, b) - std::max(kappa_old, a));
+      };
+      const double sum =
+        I_0 * (I_k - tail_0) / (I_k - I_0) * overlap(I_0, I_k) +
+        tail_0 * I_u / (I_u - I_k) * overlap(I_k, I_u);
+      return fibre_energy * sum / (kappa_new * kappa_new);
     }
 
     /**
