@@ -229,12 +229,13 @@ namespace YarnImpact
       {
         if (kappa <= I_0)
           return 0.;
+        if (tail_stress_ratio != 0.)
+          return 1. - envelope(kappa, h, I_0) / kappa;
+        // The linear curve written out, as before the tail (the same bits).
         const double I_u = final_log_stretch(h, I_0);
         if (kappa >= I_u)
           return 1.;
-        if (tail_stress_ratio == 0.)
-          return 1. - I_0 * (I_u - kappa) / (kappa * (I_u - I_0));
-        return 1. - envelope(kappa, h, I_0) / kappa;
+        return 1. - I_0 * (I_u - kappa) / (kappa * (I_u - I_0));
       }
     };
 
@@ -263,6 +264,8 @@ namespace YarnImpact
                           const double I_0)
     {
       const double I_u = law.final_log_stretch(h, I_0);
+      // The linear curve keeps its own expression: the general one below
+      // gives the same number with other roundings.
       if (law.tail_stress_ratio == 0.)
         {
           const double lo = std::max(kappa_old, I_0);
