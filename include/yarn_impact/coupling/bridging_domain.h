@@ -1,0 +1,234 @@
+#ifndef yarn_impact_coupling_bridging_domain_h
+#define yarn_impact_coupling_bridging_domain_h
+
+#include <cstddef>
+#include <vector>
+
+namespace YarnImpact
+{
+  /**
+   * The coupling of a particle model (the DEM fibres) and a continuum (the
+   * FE yarn) in an overlap where both exist: the bridging domain method
+   * (doc/hybrid.md). This layer sits above the models and is the only one
+   * allowed to know both; what is here is model-neutral (arrays of masses,
+   * forces and shape values), so that it can be checked on its own
+   * (tests/coupling).
+   */
+  namespace Coupling
+  {
+    /**
+     * The partition of the yarn between the two models along its axis x,
+     * symmetric about x = 0:
+     * - particles only where |x| <= a - w (the impact zone),
+     * - both models in the overlap a - w <= |x| <= a,
+     * - the continuum only where |x| >= a,
+     *
+     * with a the particle half-length and w the overlap width. In the
+     * overlap each model's energy (its masses and its strain energy) is
+     * multiplied by its weight; the two weights sum to one everywhere: the
+     * particle weight beta falls linearly from 1 at |x| = a - w to 0 at
+     * |x| = a, the continuum weight is 1 - beta.
+     */
+    class OverlapWeight
+    {
+    public:
+      /**
+       * @param particle_half_length a: the particles exist where |x| <= a [m]
+       * @param overlap_width w, with 0 < w <= a [m]
+       */
+      OverlapWeight(const double particle_half_length,
+                    const double overlap_width);
+
+      /** Weight of the particle model at axial position @p x [m]: 1 for
+       * |x| <= a - w, 0 for |x| >= a, linear between [-]. */
+      double
+      particle(const double x) const;
+
+      /** Weight of the continuum at @p x [m]: 1 - particle(x) [-]. */
+      double
+      continuum(const double x) const
+      {
+        return 1. - particle(x);
+      }
+
+      /** Mean of the particle weight over the segment [x0, x1] along x
+       * (exact: the weight is piecewise linear) [-]; x0 == x1 gives the
+       * point value. A truss's or an element's weight (its energy is
+       * weighted by the mean over its length). */
+      double
+      mean_particle(const double x0, const double x1) const;
+
+      /** Whether @p x [m] lies in the overlap, a - w <= |x| <= a (ends
+       * included: the particles there are tied to the continuum). */
+      bool
+      in_overlap(const double x) const;
+
+      /** a - w [m]. */
+      double
+      inner() const
+      {
+        return a - w;
+      }
+
+      /** a [m]. */
+      double
+      outer() const
+      {
+        return a;
+      }
+
+    private:
+      double a;
+      double w;
+      /** Integral of the particle weight from 0 to |x| [m]. */
+      double
+      integral(const double x) const;
+    };
+
+
+    /**
+     * The constraints of the overlap: every particle i in it moves with the
+     * continuum, v_i = sum_J N_J(X_i) v_J, with N_J the continuum's shape
+     * functions at the particle's reference position X_i. The constraint is
+     * strong (one per particle) and holds exactly at every step, in
+     * velocities, hence in displacements.
+     *
+     * The explicit step with Lagrange multipliers lambda (the force the
+     * continuum exerts on particle i): with the scaled lumped masses M_J of
+     * the continuum's nodes and m_i of the particles, and the scaled forces
+     * f_J and f_i of each model,
+     *
+     *   M_J a_J = f_J - sum_i N_J(X_i) lambda_i,
+     *   m_i a_i = f_i + lambda_i,
+     *   a_i     = sum_J N_J(X_i) a_J.
+     *
+     * Eliminating lambda and the particles' accelerations leaves
+     *
+     *   K a = f + N^T f_p,  with K = diag(M) + N^T diag(m) N,
+     *
+     * a small symmetric positive definite system over the nodes that carry
+     * constrained particles (hundreds of nodes against tens of thousands of
+     * particles). K is constant (reference positions and masses), so it is
+     * factorised once (Cholesky) and every step costs two triangular
+     * solves. This is the multiplier system A lambda = g of the method,
+     * A = diag(m)^-1 + N diag(M)^-1 N^T, solved exactly (Woodbury's
+     * identity) instead of with A lumped: the constraints hold to round-off
+     * and the coupled system is a Lagrangian system with the mass matrix
+     * K, so velocity Verlet keeps its energy behaviour.
+     *
+     * Linear momentum is exact when the shape values at every particle sum
+     * to one (checked): the multipliers' sum on the particles equals their
+     * sum on the nodes. The multipliers do no work on velocities that
+     * satisfy the constraints; the work they do on each model separately
+     * (what crosses the interface) is lambda . v_i summed over the
+     * particles.
+     *
+     * Vectors of three components per node or particle are stored
+     * interleaved: [x0, y0, z0, x1, ...].
+     */
+    class BridgingConstraint
+    {
+    public:
+      /** @p n_nodes coupled nodes (indices 0 .. n_nodes - 1), no particles,
+       * every nodal mass zero. */
+      explicit BridgingConstraint(const unsigned int n_nodes = 0);
+
+      /** Set the scaled lumped mass of coupled node @p node: the
+       * continuum's mass there, multiplied by its weight [kg]. */
+      void
+      set_node_mass(const unsigned int node, const double mass);
+
+      /**
+       * Add a constrained particle.
+       * @param mass its scaled mass (mass times its weight) [kg]
+       * @param nodes the coupled nodes whose shape functions do not vanish
+       * at its reference position
+       * @param shape_values N_J(X_i) for those nodes; they must sum to one
+       * [-]
+       * @return the particle's index in this constraint
+       */
+      unsigned int
+      add_particle(const double mass,
+                   const std::vector<unsigned int> &nodes,
+                   const std::vector<double> &shape_values);
+
+      /**
+       * Assemble K and factorise it. Throws std::runtime_error naming the
+       * cause if a particle's shape values do not sum to one within 1e-12,
+       * a mass is negative, or K is not positive definite (a coupled node
+       * with neither mass nor a particle in its support).
+       */
+      void
+      factorize();
+
+      /** Number of coupled nodes. */
+      unsigned int
+      n_nodes() const
+      {
+        return node_mass.size();
+      }
+
+      /** Number of constrained particles. */
+      unsigned int
+      n_particles() const
+      {
+        return particle_mass.size();
+      }
+
+      /**
+       * The accelerations of the coupled system (after factorize()).
+       * @param node_force the continuum's scaled forces at the coupled
+       * nodes, 3 per node [N]
+       * @param particle_force the particle model's scaled forces on the
+       * constrained particles, 3 per particle [N]
+       * @param[out] node_acceleration 3 per node [m/s^2]
+       * @param[out] particle_acceleration 3 per particle, the interpolated
+       * node accelerations [m/s^2]
+       * @param[out] constraint_force if not null, lambda: the force of the
+       * continuum on each particle, 3 per particle (its opposite acts on
+       * the nodes through N^T) [N]
+       */
+      void
+      accelerations(const double *node_force,
+                    const double *particle_force,
+                    double *node_acceleration,
+                    double *particle_acceleration,
+                    double *constraint_force = nullptr) const;
+
+      /** The nodal field @p node_values (3 per node) interpolated at the
+       * particles: @p particle_values = N node_values (3 per particle). */
+      void
+      interpolate(const double *node_values, double *particle_values) const;
+
+      /** Largest |v_i - sum_J N_J(X_i) v_J| over the particles and
+       * components: how far the velocities are from the constraints
+       * [m/s]. */
+      double
+      largest_violation(const double *node_velocity,
+                        const double *particle_velocity) const;
+
+      /** Memory of the constraint: the factor of K and the shape values
+       * [bytes]. */
+      std::size_t
+      memory_consumption() const;
+
+    private:
+      std::vector<double> node_mass;
+      std::vector<double> particle_mass;
+      /** Shape values of particle i: entries row_start[i] .. row_start[i+1]
+       * of column and value. */
+      std::vector<unsigned int> row_start;
+      std::vector<unsigned int> column;
+      std::vector<double> value;
+      /** Lower Cholesky factor of K, dense, row-major n x n. */
+      std::vector<double> factor;
+      bool factorized = false;
+
+      /** Solve K x = b in place for one component (stride 3, offset d). */
+      void
+      solve(double *b, const unsigned int d) const;
+    };
+  } // namespace Coupling
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,269 @@
+#include <yarn_impact/coupling/bridging_domain.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    OverlapWeight::OverlapWeight(const double particle_half_length,
+                                 const double overlap_width)
+      : a(particle_half_length)
+      , w(overlap_width)
+    {
+      if (!(w > 0.) || !(w <= a))
+        throw std::invalid_argument(
+          "OverlapWeight: the overlap width must be in (0, a]");
+    }
+
+
+    double
+    OverlapWeight::particle(const double x) const
+    {
+      const double r = std::abs(x);
+      if (r <= a - w)
+        return 1.;
+      if (r >= a)
+        return 0.;
+      return (a - r) / w;
+    }
+
+
+    double
+    OverlapWeight::integral(const double x) const
+    {
+      // Integral over [0, r] of the weight, r = |x|: the plateau, then the
+      // ramp's trapezoid.
+      const double r = std::abs(x), r0 = a - w;
+      if (r <= r0)
+        return r;
+      const double s = std::min(r, a) - r0;
+      return r0 + s - 0.5 * s * s / w;
+    }
+
+
+    double
+    OverlapWeight::mean_particle(const double x0, const double x1) const
+    {
+      if (x0 == x1)
+        return particle(x0);
+      // The weight is even in x: integrate each side of 0 on its own.
+      auto signed_integral = [this](const double x) {
+        return x < 0. ? -integral(x) : integral(x);
+      };
+      return (signed_integral(x1) - signed_integral(x0)) / (x1 - x0);
+    }
+
+
+    bool
+    OverlapWeight::in_overlap(const double x) const
+    {
+      const double r = std::abs(x);
+      return r >= a - w && r <= a;
+    }
+
+
+    BridgingConstraint::BridgingConstraint(const unsigned int n_nodes)
+      : node_mass(n_nodes, 0.)
+      , row_start(1, 0)
+    {}
+
+
+    void
+    BridgingConstraint::set_node_mass(const unsigned int node,
+                                      const double mass)
+    {
+      node_mass.at(node) = mass;
+      factorized         = false;
+    }
+
+
+    unsigned int
+    BridgingConstraint::add_particle(const double mass,
+                                     const std::vector<unsigned int> &nodes,
+                                     const std::vector<double> &shape_values)
+    {
+      if (nodes.size() != shape_values.size())
+        throw std::invalid_argument(
+          "BridgingConstraint::add_particle: as many shape values as nodes");
+      for (const unsigned int n : nodes)
+        if (n >= node_mass.size())
+          throw std::out_of_range(
+            "BridgingConstraint::add_particle: node index out of range");
+      particle_mass.push_back(mass);
+      column.insert(column.end(), nodes.begin(), nodes.end());
+      value.insert(value.end(), shape_values.begin(), shape_values.end());
+      row_start.push_back(column.size());
+      factorized = false;
+      return particle_mass.size() - 1;
+    }
+
+
+    void
+    BridgingConstraint::factorize()
+    {
+      const unsigned int n = node_mass.size();
+      for (unsigned int j = 0; j < n; ++j)
+        if (!(node_mass[j] >= 0.))
+          throw std::runtime_error("Bridging constraint: node " +
+                                   std::to_string(j) +
+                                   " has a negative or undefined mass");
+      // K = diag(M) + N^T diag(m) N, dense (the coupled nodes are few).
+      factor.assign(std::size_t(n) * n, 0.);
+      for (unsigned int j = 0; j < n; ++j)
+        factor[std::size_t(j) * n + j] = node_mass[j];
+      for (unsigned int i = 0; i < particle_mass.size(); ++i)
+        {
+          if (!(particle_mass[i] >= 0.))
+            throw std::runtime_error("Bridging constraint: particle " +
+                                     std::to_string(i) +
+                                     " has a negative or undefined mass");
+          double sum = 0.;
+          for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
+            {
+              // Shape functions that are non-negative within their cell
+              // (Q1, and the string's linear elements) take values in
+              // [0, 1] at a particle inside it.
+              if (!(value[p] >= -1e-12 && value[p] <= 1. + 1e-12))
+                throw std::runtime_error(
+                  "Bridging constraint: shape value " +
+                  std::to_string(value[p]) + " at particle " +
+                  std::to_string(i) +
+                  " is outside [0, 1] (the particle is not in the cell "
+                  "given for it)");
+              sum += value[p];
+            }
+          if (!(std::abs(sum - 1.) <= 1e-12))
+            throw std::runtime_error(
+              "Bridging constraint: the shape values at particle " +
+              std::to_string(i) + " sum to " + std::to_string(sum) +
+              ", not 1 (the particle is outside the continuum's mesh)");
+          for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
+            for (unsigned int q = row_start[i]; q < row_start[i + 1]; ++q)
+              factor[std::size_t(column[p]) * n + column[q]] +=
+                particle_mass[i] * value[p] * value[q];
+        }
+      // In-place Cholesky K = L L^T, L in the lower triangle.
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          double *Lj = &factor[std::size_t(j) * n];
+          double d   = Lj[j];
+          for (unsigned int k = 0; k < j; ++k)
+            d -= Lj[k] * Lj[k];
+          if (!(d > 0.))
+            throw std::runtime_error(
+              "Bridging constraint: the coupled mass matrix is not positive "
+              "definite at node " +
+              std::to_string(j) +
+              " (a coupled node with neither mass nor a particle near it)");
+          Lj[j] = std::sqrt(d);
+          for (unsigned int i = j + 1; i < n; ++i)
+            {
+              double *Li = &factor[std::size_t(i) * n];
+              double s   = Li[j];
+              for (unsigned int k = 0; k < j; ++k)
+                s -= Li[k] * Lj[k];
+              Li[j] = s / Lj[j];
+            }
+          for (unsigned int k = j + 1; k < n; ++k)
+            Lj[k] = 0.;
+        }
+      factorized = true;
+    }
+
+
+    void
+    BridgingConstraint::solve(double *b, const unsigned int d) const
+    {
+      const unsigned int n = node_mass.size();
+      // L y = b
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const double *Li = &factor[std::size_t(i) * n];
+          double s         = b[3 * i + d];
+          for (unsigned int k = 0; k < i; ++k)
+            s -= Li[k] * b[3 * k + d];
+          b[3 * i + d] = s / Li[i];
+        }
+      // L^T x = y
+      for (unsigned int i = n; i-- > 0;)
+        {
+          double s = b[3 * i + d];
+          for (unsigned int k = i + 1; k < n; ++k)
+            s -= factor[std::size_t(k) * n + i] * b[3 * k + d];
+          b[3 * i + d] = s / factor[std::size_t(i) * n + i];
+        }
+    }
+
+
+    void
+    BridgingConstraint::accelerations(const double *node_force,
+                                      const double *particle_force,
+                                      double *node_acceleration,
+                                      double *particle_acceleration,
+                                      double *constraint_force) const
+    {
+      if (!factorized)
+        throw std::logic_error(
+          "BridgingConstraint::accelerations before factorize()");
+      const unsigned int n = node_mass.size();
+      // The generalised force f + N^T f_p on the nodes.
+      std::copy(node_force, node_force + 3 * n, node_acceleration);
+      for (unsigned int i = 0; i < particle_mass.size(); ++i)
+        for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
+          for (unsigned int d = 0; d < 3; ++d)
+            node_acceleration[3 * column[p] + d] +=
+              value[p] * particle_force[3 * i + d];
+      for (unsigned int d = 0; d < 3; ++d)
+        solve(node_acceleration, d);
+      interpolate(node_acceleration, particle_acceleration);
+      if (constraint_force != nullptr)
+        for (unsigned int i = 0; i < particle_mass.size(); ++i)
+          for (unsigned int d = 0; d < 3; ++d)
+            constraint_force[3 * i + d] =
+              particle_mass[i] * particle_acceleration[3 * i + d] -
+              particle_force[3 * i + d];
+    }
+
+
+    void
+    BridgingConstraint::interpolate(const double *node_values,
+                                    double *particle_values) const
+    {
+      for (unsigned int i = 0; i < particle_mass.size(); ++i)
+        {
+          double v[3] = {0., 0., 0.};
+          for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
+            for (unsigned int d = 0; d < 3; ++d)
+              v[d] += value[p] * node_values[3 * column[p] + d];
+          for (unsigned int d = 0; d < 3; ++d)
+            particle_values[3 * i + d] = v[d];
+        }
+    }
+
+
+    double
+    BridgingConstraint::largest_violation(const double *node_velocity,
+                                          const double *particle_velocity) const
+    {
+      std::vector<double> v(3 * particle_mass.size());
+      interpolate(node_velocity, v.data());
+      double largest = 0.;
+      for (unsigned int k = 0; k < v.size(); ++k)
+        largest = std::max(largest, std::abs(particle_velocity[k] - v[k]));
+      return largest;
+    }
+
+
+    std::size_t
+    BridgingConstraint::memory_consumption() const
+    {
+      return sizeof(double) * (factor.capacity() + node_mass.capacity() +
+                               particle_mass.capacity() + value.capacity()) +
+             sizeof(unsigned int) * (row_start.capacity() + column.capacity());
+    }
+  } // namespace Coupling
+} // namespace YarnImpact

@@ -1,0 +1,740 @@
+// The bridging-domain coupling (coupling/bridging_domain.h, doc/hybrid.md
+// section 2) checked on its own, on a string: one KM2 fibre of 12 um
+// spheres linked by trusses (the DEM's fibre) on x in [0, a], coupled in
+// the overlap [a - w, a] to two-node finite elements of ten sphere spacings
+// (the same linear density rho A and axial stiffness EA, lumped mass) up to
+// the far end. Both are geometrically exact, so a pretensioned string also
+// carries transverse waves.
+//
+// Physics checks, no recorded numbers: each line of the file `output` says
+// what is checked against which bound and PASS or FAIL; the measured values
+// go to stdout (kept by the test machinery in `stdout`), and a failed check
+// makes the exit code non-zero.
+//
+// 1. Patch test: a uniform stretch at rest gives no force on any degree of
+//    freedom (round-off, 1e-9 of the tension) when the overlap's nodes sit
+//    on spheres; with nodes between spheres, the force on such a node is the
+//    closed form T l^2 / (4 w h) of the weighted sums (doc/hybrid.md 2.4).
+// 2. Momentum: free string, random velocities, 4000 steps: the total linear
+//    momentum is conserved to 1e-12 of sum |m v|; the constraints hold to
+//    1e-12 of the largest speed.
+// 3. Waves: a longitudinal pulse and a transverse pulse (pretension 1 %) of
+//    10 and 20 cells cross the overlap in both directions. Reflected energy
+//    (the energy of the difference to the same pulse in the incoming side's
+//    model alone, in the incoming side's own region) <= 1 % of the pulse's;
+//    the transmitted pulse's speed (its energy centroid over 40 cells)
+//    within 1 % of the receiving model's own speed for the same pulse; the
+//    total energy conserved within 0.05 % of the pulse's energy.
+
+#include <yarn_impact/coupling/bridging_domain.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace YarnImpact;
+
+namespace
+{
+  // KM2 fibre (doc/dem.md): E = 84.62 GPa, rho = 1440 kg/m^3, d = 12 um.
+  constexpr double E = 84.62e9, rho = 1440., A = M_PI * 36e-12;
+  constexpr double l   = 12e-6;
+  const double c_axial = std::sqrt(E / rho);
+
+  std::ofstream verdicts("output");
+  bool all_passed = true;
+
+  void
+  check(const bool ok, const std::string &what)
+  {
+    verdicts << (ok ? "PASS " : "FAIL ") << what << '\n';
+    std::printf("%s %s\n", ok ? "PASS" : "FAIL", what.c_str());
+    all_passed = all_passed && ok;
+  }
+
+  enum class Kind
+  {
+    hybrid,
+    particles_only,
+    continuum_only
+  };
+
+  struct Geometry
+  {
+    Kind kind;
+    /** FE cell length [m]. */
+    double h;
+    /** Particle half-length a and overlap width w [m] (hybrid). */
+    double a, w;
+    /** Far end [m]. */
+    double x_end;
+    bool clamped;
+  };
+
+  /** Quadratic energy of a perturbation d (relative displacement of the
+   * two ends) of a segment of stiffness k under the pretension T0 along x,
+   * with current rest-state length L1: (k d_x^2 + T0/L1 (d_y^2 + d_z^2))/2
+   * [J]. */
+  double
+  perturbation_energy(const double *d,
+                      const double k,
+                      const double T0,
+                      const double L1)
+  {
+    return 0.5 * (k * d[0] * d[0] + T0 / L1 * (d[1] * d[1] + d[2] * d[2]));
+  }
+
+  /**
+   * The string: spheres (particles) and nodes (continuum), each with its
+   * scaled mass, position and velocity; the trusses between consecutive
+   * spheres and the elements between consecutive nodes with their weights;
+   * the bridging constraint over the overlap.
+   */
+  class HybridString
+  {
+  public:
+    HybridString(const Geometry &g, const double prestrain)
+      : g(g)
+      , weight(g.kind == Kind::hybrid ? g.a : 1.,
+               g.kind == Kind::hybrid ? g.w : 1.)
+      , prestrain(prestrain)
+    {
+      const bool particles      = g.kind != Kind::continuum_only;
+      const bool continuum      = g.kind != Kind::particles_only;
+      const double particle_end = g.kind == Kind::hybrid ? g.a : g.x_end;
+      if (particles)
+        {
+          const unsigned int P = std::lround(particle_end / l);
+          for (unsigned int i = 0; i <= P; ++i)
+            Xs.push_back(i * l);
+          for (unsigned int i = 0; i <= P; ++i)
+            {
+              const double natural =
+                rho * A * l * ((i == 0 || i == P) ? 0.5 : 1.);
+              ms.push_back(beta(Xs[i], Xs[i]) * natural);
+            }
+          for (unsigned int i = 0; i < P; ++i)
+            truss_weight.push_back(beta(Xs[i], Xs[i + 1]));
+        }
+      if (continuum)
+        {
+          const double start   = g.kind == Kind::hybrid ? g.a - g.w : 0.;
+          const unsigned int N = std::lround((g.x_end - start) / g.h);
+          for (unsigned int J = 0; J <= N; ++J)
+            Xn.push_back(start + J * g.h);
+          Mn.assign(N + 1, 0.);
+          for (unsigned int e = 0; e < N; ++e)
+            {
+              // Weighted lumped mass: rho A int (1 - beta) N_J, exact for a
+              // weight linear over the element.
+              const double c0 = 1. - beta(Xn[e], Xn[e]),
+                           c1 = 1. - beta(Xn[e + 1], Xn[e + 1]);
+              Mn[e] += rho * A * g.h * (2. * c0 + c1) / 6.;
+              Mn[e + 1] += rho * A * g.h * (c0 + 2. * c1) / 6.;
+              element_weight.push_back(1. - beta(Xn[e], Xn[e + 1]));
+            }
+        }
+      if (g.kind == Kind::hybrid)
+        setup_constraint();
+      xs.resize(3 * Xs.size());
+      vs.assign(3 * Xs.size(), 0.);
+      xn.resize(3 * Xn.size());
+      vn.assign(3 * Xn.size(), 0.);
+      for (unsigned int i = 0; i < Xs.size(); ++i)
+        xs[3 * i]            = (1. + prestrain) * Xs[i],
+               xs[3 * i + 1] = xs[3 * i + 2] = 0.;
+      for (unsigned int J = 0; J < Xn.size(); ++J)
+        xn[3 * J]            = (1. + prestrain) * Xn[J],
+               xn[3 * J + 1] = xn[3 * J + 2] = 0.;
+      rest_xs = xs;
+      rest_xn = xn;
+      compute_forces();
+    }
+
+    /** The particle weight's mean over [x0, x1] (a point for x0 == x1). */
+    double
+    beta(const double x0, const double x1) const
+    {
+      if (g.kind == Kind::particles_only)
+        return 1.;
+      if (g.kind == Kind::continuum_only)
+        return 0.;
+      return weight.mean_particle(x0, x1);
+    }
+
+    /** The overlap element holding sphere @p i, and the sphere's local
+     * coordinate in it, in [0, 1]. */
+    void
+    locate(const unsigned int i, unsigned int &e, double &x1) const
+    {
+      const double s = (Xs[i] - Xn[0]) / g.h;
+      e  = s <= 0. ? 0u : std::min<unsigned int>(std::floor(s), n_coupled - 2);
+      x1 = std::clamp((Xs[i] - Xn[e]) / g.h, 0., 1.);
+    }
+
+    void
+    setup_constraint()
+    {
+      // Coupled nodes: those of the overlap, a - w <= X <= a.
+      n_coupled = 0;
+      while (n_coupled < Xn.size() && Xn[n_coupled] <= g.a * (1. + 1e-14))
+        ++n_coupled;
+      constraint = Coupling::BridgingConstraint(n_coupled);
+      for (unsigned int J = 0; J < n_coupled; ++J)
+        constraint.set_node_mass(J, Mn[J]);
+      slave.assign(Xs.size(), -1);
+      for (unsigned int i = 0; i < Xs.size(); ++i)
+        if (Xs[i] >= (g.a - g.w) * (1. - 1e-12) && Xs[i] <= g.a * (1. + 1e-12))
+          {
+            unsigned int e;
+            double x1;
+            locate(i, e, x1);
+            std::vector<unsigned int> nodes;
+            std::vector<double> values;
+            if (1. - x1 != 0.)
+              nodes.push_back(e), values.push_back(1. - x1);
+            if (x1 != 0.)
+              nodes.push_back(e + 1), values.push_back(x1);
+            slave[i] = constraint.add_particle(ms[i], nodes, values);
+            slaved.push_back(i);
+          }
+      constraint.factorize();
+    }
+
+    /** Fixed ends: the first and the last degree of freedom of the string. */
+    bool
+    sphere_fixed(const unsigned int i) const
+    {
+      return g.clamped &&
+             (i == 0 || (g.kind == Kind::particles_only && i + 1 == Xs.size()));
+    }
+    bool
+    node_fixed(const unsigned int J) const
+    {
+      return g.clamped &&
+             (J + 1 == Xn.size() || (g.kind == Kind::continuum_only && J == 0));
+    }
+
+    void
+    compute_forces()
+    {
+      fs.assign(xs.size(), 0.);
+      fn.assign(xn.size(), 0.);
+      segment_forces(xs, truss_weight, E * A / l, l, fs);
+      segment_forces(xn, element_weight, E * A / g.h, g.h, fn);
+      as.assign(xs.size(), 0.);
+      an.assign(xn.size(), 0.);
+      for (unsigned int i = 0; i < Xs.size(); ++i)
+        if ((g.kind != Kind::hybrid || slave[i] < 0) && !sphere_fixed(i))
+          for (unsigned int d = 0; d < 3; ++d)
+            as[3 * i + d] = fs[3 * i + d] / ms[i];
+      for (unsigned int J = (g.kind == Kind::hybrid ? n_coupled : 0);
+           J < Xn.size();
+           ++J)
+        if (!node_fixed(J))
+          for (unsigned int d = 0; d < 3; ++d)
+            an[3 * J + d] = fn[3 * J + d] / Mn[J];
+      if (g.kind == Kind::hybrid)
+        {
+          std::vector<double> fp(3 * slaved.size()), ap(3 * slaved.size());
+          lambda.resize(3 * slaved.size());
+          for (unsigned int k = 0; k < slaved.size(); ++k)
+            for (unsigned int d = 0; d < 3; ++d)
+              fp[3 * k + d] = fs[3 * slaved[k] + d];
+          constraint.accelerations(fn.data(),
+                                   fp.data(),
+                                   an.data(),
+                                   ap.data(),
+                                   lambda.data());
+          for (unsigned int k = 0; k < slaved.size(); ++k)
+            for (unsigned int d = 0; d < 3; ++d)
+              as[3 * slaved[k] + d] = ap[3 * k + d];
+        }
+    }
+
+    static void
+    segment_forces(const std::vector<double> &x,
+                   const std::vector<double> &w,
+                   const double k,
+                   const double L0,
+                   std::vector<double> &f)
+    {
+      for (unsigned int t = 0; t < w.size(); ++t)
+        {
+          const double e[3] = {x[3 * t + 3] - x[3 * t],
+                               x[3 * t + 4] - x[3 * t + 1],
+                               x[3 * t + 5] - x[3 * t + 2]};
+          const double len = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+          const double s   = w[t] * k * (len - L0) / len;
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              f[3 * t + d] += s * e[d];
+              f[3 * t + 3 + d] -= s * e[d];
+            }
+        }
+    }
+
+    /** One velocity-Verlet step. */
+    void
+    step(const double dt)
+    {
+      for (unsigned int k = 0; k < vs.size(); ++k)
+        vs[k] += 0.5 * dt * as[k], xs[k] += dt * vs[k];
+      for (unsigned int k = 0; k < vn.size(); ++k)
+        vn[k] += 0.5 * dt * an[k], xn[k] += dt * vn[k];
+      compute_forces();
+      for (unsigned int k = 0; k < vs.size(); ++k)
+        vs[k] += 0.5 * dt * as[k];
+      for (unsigned int k = 0; k < vn.size(); ++k)
+        vn[k] += 0.5 * dt * an[k];
+    }
+
+    /** Total energy: kinetic, with the scaled masses, plus the weighted
+     * strain energy of trusses and elements [J]. */
+    double
+    energy() const
+    {
+      double e = 0.;
+      for (unsigned int i = 0; i < Xs.size(); ++i)
+        e += 0.5 * ms[i] * squared(&vs[3 * i]);
+      for (unsigned int J = 0; J < Xn.size(); ++J)
+        e += 0.5 * Mn[J] * squared(&vn[3 * J]);
+      e += strain_energy(xs, truss_weight, E * A / l, l);
+      e += strain_energy(xn, element_weight, E * A / g.h, g.h);
+      return e;
+    }
+
+    static double
+    squared(const double *v)
+    {
+      return v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    }
+
+    static double
+    strain_energy(const std::vector<double> &x,
+                  const std::vector<double> &w,
+                  const double k,
+                  const double L0)
+    {
+      double e = 0.;
+      for (unsigned int t = 0; t < w.size(); ++t)
+        {
+          const double d[3] = {x[3 * t + 3] - x[3 * t],
+                               x[3 * t + 4] - x[3 * t + 1],
+                               x[3 * t + 5] - x[3 * t + 2]};
+          const double len  = std::sqrt(squared(d));
+          e += 0.5 * w[t] * k * (len - L0) * (len - L0);
+        }
+      return e;
+    }
+
+    /** Linear momentum along @p d [kg m/s], and sum |m v| over all. */
+    void
+    momentum(const unsigned int d, double &p, double &scale) const
+    {
+      p = scale = 0.;
+      for (unsigned int i = 0; i < Xs.size(); ++i)
+        p += ms[i] * vs[3 * i + d], scale += ms[i] * std::abs(vs[3 * i + d]);
+      for (unsigned int J = 0; J < Xn.size(); ++J)
+        p += Mn[J] * vn[3 * J + d], scale += Mn[J] * std::abs(vn[3 * J + d]);
+    }
+
+    /**
+     * Energy of the difference between this string and @p other (the same
+     * model kind on the side measured) over the spheres (particles = true)
+     * or nodes with reference position in [x0, x1] and the segments with
+     * both ends there, as a quadratic form about the pretensioned rest state
+     * [J]. With @p other null, the perturbation from the rest state. Also
+     * the centroid of that energy along x [m].
+     */
+    double
+    difference_energy(const HybridString *other,
+                      const bool particles,
+                      const double x0,
+                      const double x1,
+                      double *centroid = nullptr) const
+    {
+      const auto &X   = particles ? Xs : Xn;
+      const auto &m   = particles ? ms : Mn;
+      const auto &x   = particles ? xs : xn;
+      const auto &v   = particles ? vs : vn;
+      const auto &w   = particles ? truss_weight : element_weight;
+      const double L0 = particles ? l : g.h;
+      const double k  = E * A / L0;
+      const double T0 = E * A * prestrain;
+      std::vector<double> u(x.size()), dv(v.size());
+      const auto &X_other = other ? (particles ? other->Xs : other->Xn) : X;
+      const auto &x_other = other ? (particles ? other->xs : other->xn)
+                                  : (particles ? rest_xs : rest_xn);
+      const auto &v_other = other ? (particles ? other->vs : other->vn) : dv;
+      // Match the other's entities by reference position.
+      const double offset       = X.empty() ? 0. : X[0];
+      const double offset_other = X_other.empty() ? 0. : X_other[0];
+      const long shift          = std::lround((offset - offset_other) / L0);
+      double energy = 0., moment = 0.;
+      for (unsigned int i = 0; i < X.size(); ++i)
+        {
+          const long j = long(i) + shift;
+          if (j < 0 || j >= long(X_other.size()))
+            continue;
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              u[3 * i + d]  = x[3 * i + d] - x_other[3 * j + d];
+              dv[3 * i + d] = v[3 * i + d] - (other ? v_other[3 * j + d] : 0.);
+            }
+        }
+      for (unsigned int i = 0; i < X.size(); ++i)
+        if (X[i] >= x0 && X[i] <= x1)
+          {
+            const double e = 0.5 * m[i] * squared(&dv[3 * i]);
+            energy += e, moment += e * X[i];
+          }
+      for (unsigned int t = 0; t < w.size(); ++t)
+        if (X[t] >= x0 && X[t + 1] <= x1)
+          {
+            const double d[3] = {u[3 * t + 3] - u[3 * t],
+                                 u[3 * t + 4] - u[3 * t + 1],
+                                 u[3 * t + 5] - u[3 * t + 2]};
+            const double e =
+              w[t] * perturbation_energy(d, k, T0, (1. + prestrain) * L0);
+            energy += e, moment += e * 0.5 * (X[t] + X[t + 1]);
+          }
+      if (centroid)
+        *centroid = energy > 0. ? moment / energy : 0.;
+      return energy;
+    }
+
+    /** Add a pulse of width @p lambda centred at @p xc, displacement in
+     * component @p d with amplitude @p amp, travelling with speed @p c in
+     * the direction @p sign, to every free sphere and node (the overlap is
+     * left alone: the pulse starts away from it). */
+    void
+    add_pulse(const double xc,
+              const double lambda,
+              const unsigned int d,
+              const double amp,
+              const double c,
+              const double sign)
+    {
+      auto shape = [&](const double X, double &f, double &df) {
+        const double s = (X - xc) / lambda;
+        f = df = 0.;
+        if (std::abs(s) < 0.5)
+          {
+            f  = amp * std::cos(M_PI * s) * std::cos(M_PI * s);
+            df = -amp * M_PI / lambda * std::sin(2. * M_PI * s);
+          }
+      };
+      double f, df;
+      for (unsigned int i = 0; i < Xs.size(); ++i)
+        {
+          shape(Xs[i], f, df);
+          xs[3 * i + d] += f;
+          vs[3 * i + d] += -sign * c * df;
+        }
+      for (unsigned int J = 0; J < Xn.size(); ++J)
+        {
+          shape(Xn[J], f, df);
+          xn[3 * J + d] += f;
+          vn[3 * J + d] += -sign * c * df;
+        }
+      compute_forces();
+    }
+
+    /** Largest net force on a degree of freedom of the coupled system:
+     * free spheres and uncoupled nodes f, coupled nodes K a [N]. Also the
+     * node of the largest one. */
+    double
+    largest_net_force(unsigned int *at_node = nullptr) const
+    {
+      double largest = 0.;
+      for (unsigned int i = 0; i < Xs.size(); ++i)
+        if ((g.kind != Kind::hybrid || slave[i] < 0) && !sphere_fixed(i))
+          for (unsigned int d = 0; d < 3; ++d)
+            largest = std::max(largest, std::abs(fs[3 * i + d]));
+      std::vector<double> net(fn);
+      if (g.kind == Kind::hybrid)
+        for (unsigned int k = 0; k < slaved.size(); ++k)
+          {
+            // N^T f_p: the constrained spheres' forces on the nodes.
+            unsigned int e;
+            double x1;
+            locate(slaved[k], e, x1);
+            const unsigned int i = slaved[k];
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                net[3 * e + d] += (1. - x1) * fs[3 * i + d];
+                net[3 * e + 3 + d] += x1 * fs[3 * i + d];
+              }
+          }
+      for (unsigned int J = 0; J < Xn.size(); ++J)
+        if (!node_fixed(J))
+          for (unsigned int d = 0; d < 3; ++d)
+            if (std::abs(net[3 * J + d]) > largest)
+              {
+                largest = std::abs(net[3 * J + d]);
+                if (at_node)
+                  *at_node = J;
+              }
+      return largest;
+    }
+
+    /** Net force on node @p J of the coupled system [N], along x. */
+    double
+    net_force_x(const unsigned int J) const
+    {
+      double f = fn[3 * J];
+      for (unsigned int k = 0; k < slaved.size(); ++k)
+        {
+          const unsigned int i = slaved[k];
+          unsigned int e;
+          double s;
+          locate(i, e, s);
+          if (e == J)
+            f += (1. - s) * fs[3 * i];
+          if (e + 1 == J)
+            f += s * fs[3 * i];
+        }
+      return f;
+    }
+
+    double
+    largest_violation() const
+    {
+      std::vector<double> vp(3 * slaved.size());
+      for (unsigned int k = 0; k < slaved.size(); ++k)
+        for (unsigned int d = 0; d < 3; ++d)
+          vp[3 * k + d] = vs[3 * slaved[k] + d];
+      return constraint.largest_violation(vn.data(), vp.data());
+    }
+
+    Geometry g;
+    Coupling::OverlapWeight weight;
+    double prestrain;
+    std::vector<double> Xs, ms, xs, vs, fs, as, truss_weight, rest_xs;
+    std::vector<double> Xn, Mn, xn, vn, fn, an, element_weight, rest_xn;
+    std::vector<int> slave;
+    std::vector<unsigned int> slaved;
+    unsigned int n_coupled = 0;
+    Coupling::BridgingConstraint constraint;
+    std::vector<double> lambda;
+  };
+
+
+  void
+  patch_tests()
+  {
+    const double eps = 0.01, T = E * A * eps;
+    {
+      const Geometry g{Kind::hybrid, 10 * l, 100 * l, 40 * l, 300 * l, true};
+      const HybridString s(g, eps);
+      const double f = s.largest_net_force();
+      std::printf(
+        "patch, nodes on spheres: largest net force %.3e N = %.3e T\n",
+        f,
+        f / T);
+      check(f <= 1e-9 * T,
+            "patch test, overlap nodes on spheres (h = 10 l, w = 4 h): no "
+            "force on any degree of freedom under a uniform stretch of 1 % "
+            "(|f| <= 1e-9 T)");
+    }
+    {
+      // h = 10.5 l: the overlap's inner and outer nodes on spheres, the
+      // nodes at 10.5 l and 31.5 l from its start half-way between two.
+      const double h = 10.5 * l, w = 4 * h;
+      const Geometry g{Kind::hybrid,
+                       h,
+                       60 * l + w,
+                       w,
+                       60 * l + w + 20 * h,
+                       true};
+      const HybridString s(g, eps);
+      const double predicted = T * l * l / (4. * w * h);
+      const double f1        = std::abs(s.net_force_x(1)),
+                   f3        = std::abs(s.net_force_x(3));
+      const double largest   = s.largest_net_force();
+      std::printf("patch, nodes between spheres: |f| at the straddled nodes "
+                  "%.6e, %.6e N, largest %.6e N, closed form T l^2/(4wh) "
+                  "%.6e N\n",
+                  f1,
+                  f3,
+                  largest,
+                  predicted);
+      check(std::abs(f1 - predicted) <= 1e-6 * predicted &&
+              std::abs(f3 - predicted) <= 1e-6 * predicted &&
+              largest <= predicted * (1. + 1e-6),
+            "patch test, overlap nodes between spheres (h = 10.5 l): the "
+            "force on a node straddled by a truss is T l^2 / (4 w h) within "
+            "1e-6, and no force anywhere is larger");
+    }
+  }
+
+
+  void
+  momentum_test()
+  {
+    const Geometry g{Kind::hybrid, 10 * l, 100 * l, 40 * l, 300 * l, false};
+    HybridString s(g, 0.);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> speed(-10., 10.);
+    for (auto &v : s.vn)
+      v = speed(random);
+    for (unsigned int i = 0; i < s.Xs.size(); ++i)
+      if (s.slave[i] < 0)
+        for (unsigned int d = 0; d < 3; ++d)
+          s.vs[3 * i + d] = speed(random);
+    // The constrained spheres move with the nodes.
+    std::vector<double> vp(3 * s.slaved.size());
+    s.constraint.interpolate(s.vn.data(), vp.data());
+    for (unsigned int k = 0; k < s.slaved.size(); ++k)
+      for (unsigned int d = 0; d < 3; ++d)
+        s.vs[3 * s.slaved[k] + d] = vp[3 * k + d];
+    double p0[3], scale[3];
+    for (unsigned int d = 0; d < 3; ++d)
+      s.momentum(d, p0[d], scale[d]);
+    const double dt = 0.5 * l / c_axial;
+    double drift = 0., violation = 0.;
+    for (unsigned int n = 0; n < 4000; ++n)
+      {
+        s.step(dt);
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            double p, sc;
+            s.momentum(d, p, sc);
+            drift = std::max(drift, std::abs(p - p0[d]) / scale[d]);
+          }
+        violation = std::max(violation, s.largest_violation());
+      }
+    std::printf("momentum: largest |P - P0| / sum|m v| %.3e, largest "
+                "constraint violation %.3e m/s\n",
+                drift,
+                violation);
+    check(drift <= 1e-12,
+          "momentum: free string with random velocities, 4000 steps: |P - "
+          "P0| <= 1e-12 sum |m v| in every direction");
+    check(violation <= 1e-12 * 10.,
+          "constraints: |v_i - N v| <= 1e-12 of the largest initial speed "
+          "at every step");
+  }
+
+
+  struct PulseResult
+  {
+    double reflected, speed_ratio, energy_error;
+  };
+
+  /** One pulse of @p cells FE cells in component @p d, from the particles
+   * to the continuum (@p rightward) or back. */
+  PulseResult
+  pulse_test(const double cells, const unsigned int d, const bool rightward)
+  {
+    const double h = 10 * l, w = 4 * h, lambda = cells * h;
+    const double a = 100 * h + w, x_end = a + 120 * h;
+    const double eps = d == 0 ? 0. : 0.01;
+    // Longitudinal: c = sqrt(E/rho); transverse, pretension T0 = EA eps:
+    // c^2 = T0 / (rho A (1 + eps)) in reference coordinates.
+    const double c = d == 0 ? c_axial : std::sqrt(E * eps / (rho * (1. + eps)));
+    const double amp = (d == 0 ? 1e-3 : 1e-2) * lambda / M_PI;
+    const double xc =
+      rightward ? a - w - 0.5 * lambda - 2 * h : a + 0.5 * lambda + 2 * h;
+    const double sign = rightward ? 1. : -1.;
+    const Geometry hybrid{Kind::hybrid, h, a, w, x_end, true};
+    const Geometry particles{Kind::particles_only, h, a, w, x_end, true};
+    const Geometry continuum{Kind::continuum_only, h, a, w, x_end, true};
+    HybridString s(hybrid, eps), p(particles, eps), q(continuum, eps);
+    for (HybridString *m : {&s, &p, &q})
+      m->add_pulse(xc, lambda, d, amp, c, sign);
+    HybridString &incoming  = rightward ? p : q;
+    HybridString &receiving = rightward ? q : p;
+    // The pulse energy, in its own model.
+    const double pulse_energy =
+      incoming.difference_energy(nullptr, rightward, 0., x_end);
+    const double e0 = s.energy();
+    // Times: the pulse has wholly left the overlap at t1; speed measured
+    // over the next 40 cells, reflection at t2.
+    const double t1 = (rightward ? (a - (xc - 0.5 * lambda))
+                                 : ((xc + 0.5 * lambda) - (a - w))) /
+                        c +
+                      2 * h / c;
+    const double t2 = t1 + 40 * h / c;
+    const double dt = 0.5 * l / c_axial;
+    // The receiving side's own region.
+    const double r0 = rightward ? a : 0., r1 = rightward ? x_end : a - w;
+    const double i0 = rightward ? 0. : a, i1 = rightward ? a - w : x_end;
+    double t = 0., energy_error = 0., centroid[2][2] = {{0, 0}, {0, 0}};
+    unsigned int mark = 0;
+    while (t < t2)
+      {
+        for (HybridString *m : {&s, &p, &q})
+          m->step(dt);
+        t += dt;
+        energy_error =
+          std::max(energy_error, std::abs(s.energy() - e0) / pulse_energy);
+        if (mark == 0 && t >= t1)
+          {
+            s.difference_energy(nullptr, !rightward, r0, r1, &centroid[0][0]);
+            receiving.difference_energy(nullptr,
+                                        !rightward,
+                                        r0,
+                                        r1,
+                                        &centroid[1][0]);
+            mark = 1;
+          }
+      }
+    s.difference_energy(nullptr, !rightward, r0, r1, &centroid[0][1]);
+    receiving.difference_energy(nullptr, !rightward, r0, r1, &centroid[1][1]);
+    const double reflected =
+      s.difference_energy(&incoming, rightward, i0, i1) / pulse_energy;
+    const double speed_ratio =
+      (centroid[0][1] - centroid[0][0]) / (centroid[1][1] - centroid[1][0]);
+    std::printf("pulse %s, %2.0f cells, %s: reflected %.3e of the pulse "
+                "energy, transmitted speed / receiving model's %.5f "
+                "(%.1f m/s, c = %.1f m/s), energy error %.2e of the pulse's\n",
+                d == 0 ? "longitudinal" : "transverse  ",
+                cells,
+                rightward ? "particles -> continuum" : "continuum -> particles",
+                reflected,
+                speed_ratio,
+                (centroid[0][1] - centroid[0][0]) / (t2 - t1),
+                c,
+                energy_error);
+    return {reflected, speed_ratio, energy_error};
+  }
+
+
+  void
+  wave_tests()
+  {
+    for (const unsigned int d : {0u, 1u})
+      for (const double cells : {10., 20.})
+        for (const bool rightward : {true, false})
+          {
+            const PulseResult r = pulse_test(cells, d, rightward);
+            const std::string what =
+              std::string(d == 0 ? "longitudinal" : "transverse") +
+              " pulse of " + std::to_string(int(cells)) + " cells, " +
+              (rightward ? "particles -> continuum" : "continuum -> particles");
+            check(r.reflected <= 0.01,
+                  what + ": reflected energy <= 1 % of the pulse's");
+            check(std::abs(r.speed_ratio - 1.) <= 0.01,
+                  what + ": transmitted speed within 1 % of the receiving "
+                         "model's");
+            check(r.energy_error <= 5e-4,
+                  what + ": total energy within 0.05 % of the pulse's");
+          }
+  }
+} // namespace
+
+
+int
+main()
+{
+  patch_tests();
+  momentum_test();
+  wave_tests();
+  return all_passed ? 0 : 1;
+}
