@@ -537,10 +537,33 @@ namespace YarnImpact
     }
 
 
+    Parameters
+    with_fibre_data(const YarnImpact::Parameters::Shared &shared,
+                    const Parameters &given)
+    {
+      Parameters parameters = given;
+      if (given.density_from_fibres)
+        parameters.density = shared.yarn.fibre_density *
+                             shared.yarn.fibre_area() /
+                             shared.yarn.section_area();
+      // The DEM's axial stiffness, n_f E_f A_f, spread over the ellipse.
+      if (given.axial_modulus_from_fibres)
+        {
+          const double modulus = shared.yarn.fibre_modulus *
+                                 shared.yarn.fibre_area() /
+                                 shared.yarn.section_area();
+          parameters.charmetant.k_e = modulus;
+          parameters.linear.E_L     = modulus;
+        }
+      return parameters;
+    }
+
+
     void
     validate(const YarnImpact::Parameters::Shared &shared,
-             const Parameters &parameters)
+             const Parameters &given)
     {
+      const Parameters parameters = with_fibre_data(shared, given);
       using YarnImpact::Parameters::require;
       require(parameters.n_axial_cells % 2 == 0,
               "FE/Cells along the axis",
@@ -645,17 +668,14 @@ namespace YarnImpact
                  const MPI_Comm communicator)
     {
       validate(shared, parameters);
-      const double density = parameters.density_from_fibres
-                               ? shared.yarn.fibre_density *
-                                   shared.yarn.fibre_area() /
-                                   shared.yarn.section_area()
-                               : parameters.density;
-      return with_law(parameters,
+      const Parameters law_parameters = with_fibre_data(shared, parameters);
+      const double density            = law_parameters.density;
+      return with_law(law_parameters,
                       density,
                       [&](const auto &law) -> std::unique_ptr<ImpactModel> {
                         using Law = std::decay_t<decltype(law)>;
                         return std::make_unique<YarnModel<Law>>(shared,
-                                                                parameters,
+                                                                law_parameters,
                                                                 law,
                                                                 communicator);
                       });

@@ -35,6 +35,16 @@ namespace YarnImpact
         "When true, the density is Yarn/Fibre density x fibre area / section "
         "area, so that the FE yarn has the DEM yarn's mass per length "
         "(Density is then ignored).");
+      prm.declare_entry(
+        "Axial modulus from fibres",
+        "false",
+        Patterns::Bool(),
+        "When true, the law's axial modulus (Charmetant/k_e, Linear "
+        "transversely isotropic/E_L) is Yarn/Fibre Young modulus x fibre "
+        "area / section area, so that the FE yarn has the DEM yarn's axial "
+        "stiffness EA (the law's own entry is then ignored). With Density "
+        "from fibres, both models carry the same yarn (doc/hybrid.md "
+        "section 3).");
       prm.declare_entry("Cells along the axis",
                         "100",
                         Patterns::Integer(),
@@ -152,11 +162,12 @@ namespace YarnImpact
     Parameters::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("FE");
-      law                 = (prm.get("Constitutive law") == "Charmetant"
-                               ? LawType::charmetant
-                               : LawType::linear_transversely_isotropic);
-      density             = get_positive_double(prm, "FE", "Density");
-      density_from_fibres = prm.get_bool("Density from fibres");
+      law                       = (prm.get("Constitutive law") == "Charmetant"
+                                     ? LawType::charmetant
+                                     : LawType::linear_transversely_isotropic);
+      density                   = get_positive_double(prm, "FE", "Density");
+      density_from_fibres       = prm.get_bool("Density from fibres");
+      axial_modulus_from_fibres = prm.get_bool("Axial modulus from fibres");
       n_axial_cells =
         YarnImpact::Parameters::get_positive_integer(prm,
                                                      "FE",

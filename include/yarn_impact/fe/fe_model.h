@@ -16,6 +16,17 @@ namespace YarnImpact
   namespace FE
   {
     /**
+     * @p given with what `Density from fibres` and `Axial modulus from
+     * fibres` ask resolved: the density rho_f n_f A_f / A and the law's
+     * axial modulus (Charmetant k_e, linear E_L) E_f n_f A_f / A, with A the
+     * ellipse's area, so that the FE yarn has the DEM yarn's mass per
+     * length and axial stiffness. The other entries are @p given's.
+     */
+    Parameters
+    with_fibre_data(const YarnImpact::Parameters::Shared &shared,
+                    const Parameters &given);
+
+    /**
      * Check the FE parameters against the shared ones (a set-up that cannot
      * be meshed, an unstable contact penalty); throws InputError.
      */

@@ -75,6 +75,10 @@ namespace YarnImpact
       /** Derive the density from the DEM's mass per length (fibre density
        * times fibre area over section area) instead of `Density`. */
       bool density_from_fibres = false;
+      /** Derive the axial modulus (Charmetant k_e, linear E_L) from the
+       * DEM's axial stiffness (fibre Young modulus times fibre area over
+       * section area) instead of the law's own entry. */
+      bool axial_modulus_from_fibres = false;
       /** Cells along the whole yarn length [-]. */
       unsigned int n_axial_cells = 100;
       /** Refinements of the 12-cell section [-]. */
