@@ -160,6 +160,30 @@ namespace YarnImpact
           return lists.statistics(spheres.step_count);
         }
 
+        /** See DEM::coupling_view(). */
+        CouplingView
+        coupling_view()
+        {
+          CouplingView v;
+          v.n_fibres      = chains.nf;
+          v.n_stations    = chains.n_st;
+          v.station_begin = decomposition.st_begin;
+          v.station_end   = decomposition.st_end;
+          v.station_x     = &chains.sx0;
+          v.fibre_y       = &chains.fy;
+          v.fibre_z       = &chains.fz;
+          v.position      = spheres.pos.data();
+          v.velocity      = spheres.vel.data();
+          v.force         = spheres.frc.data();
+          v.local_index   = [this](const unsigned int s, const unsigned int f) {
+            return decomposition.local_index(s, f);
+          };
+          v.inverse_mass = [this](const unsigned int s, const unsigned int f) {
+            return chains.finv[f] * chains.sinv[s];
+          };
+          return v;
+        }
+
       private:
         /** Gap below which a sphere counts as touching the projectile in
          * the stable step [m]. */
@@ -510,6 +534,16 @@ namespace YarnImpact
         return s.str();
       }
     } // namespace
+
+
+    CouplingView
+    coupling_view(ImpactModel &model)
+    {
+      Model *dem = dynamic_cast<Model *>(&model);
+      if (dem == nullptr)
+        throw std::logic_error("DEM::coupling_view: not a DEM model");
+      return dem->coupling_view();
+    }
 
 
     std::string

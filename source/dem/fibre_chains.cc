@@ -7,6 +7,8 @@
 #include <deal.II/base/numbers.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace YarnImpact
 {
@@ -53,15 +55,27 @@ namespace YarnImpact
         n_prof           = n_seg / 2 + 1;
         n_st             = x_sym ? n_seg / 2 + 1 : n_seg + 1;
         s_impact         = x_sym ? 0 : n_seg / 2;
+        coupled          = !prm.station_weight.empty();
+        if (coupled && (prm.station_weight.size() != n_st ||
+                        prm.truss_weight.size() != n_st - 1))
+          throw std::logic_error("DEM: coupling weights for " +
+                                 std::to_string(prm.station_weight.size()) +
+                                 " stations, the model has " +
+                                 std::to_string(n_st));
         for (unsigned int s = 0; s < n_st; ++s)
           {
-            const double x     = x_sym ? s * L0 : -0.5 * y.length + s * L0;
-            const bool plane   = x_sym && s == 0;
-            const bool clamped = (s == n_st - 1) || (!x_sym && s == 0);
+            const double x   = x_sym ? s * L0 : -0.5 * y.length + s * L0;
+            const bool plane = x_sym && s == 0;
+            const bool clamped =
+              (!coupled && s == n_st - 1) || (!x_sym && s == 0);
+            const double weight = coupled ? prm.station_weight[s] : 1.;
             sx0.push_back(x);
             sw.push_back(plane ? 0.5 : 1.);
-            sinv.push_back(clamped ? 0. : (plane ? 2. : 1.));
+            sinv.push_back(clamped ? 0. : (plane ? 2. : 1.) / weight);
             xmask.push_back(plane ? 0. : 1.);
+            cw.push_back(weight);
+            if (s + 1 < n_st)
+              tw.push_back(coupled ? prm.truss_weight[s] : 1.);
           }
 
         fibre_area  = dealii::numbers::PI * d * d / 4.;
@@ -73,7 +87,7 @@ namespace YarnImpact
         total_mass = 0.;
         for (unsigned int f = 0; f < nf; ++f)
           for (unsigned int s = 0; s < n_st; ++s)
-            total_mass += sphere_mass * fw[f] * sw[s];
+            total_mass += sphere_mass * fw[f] * sw[s] * cw[s];
         total_mass *= factor;
       }
     } // namespace internal

@@ -357,6 +357,12 @@ namespace YarnImpact
               for (std::uint32_t k = 0; k < n; ++k)
                 if (zmask[row[k].j % nf] == 0.)
                   row[k].w *= 0.5f; // both on the plane z = 0
+            // A coupling's particle weight: the mean of the two stations'.
+            if (chains.coupled)
+              for (std::uint32_t k = 0; k < n; ++k)
+                row[k].w *=
+                  static_cast<float>(0.5 * (chains.cw[station_of(i)] +
+                                            chains.cw[station_of(row[k].j)]));
             if (!have_old || i < old_b || i >= old_e)
               continue;
             // Merge with the old row.

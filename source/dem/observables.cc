@@ -113,8 +113,8 @@ namespace YarnImpact
             for (unsigned int f = 0; f < nf; ++f)
               {
                 const std::size_t i = decomposition.local_index(s, f);
-                const double m      = sphere_mass * fw[f] * sw[s];
-                double v2           = 0.;
+                const double m = sphere_mass * fw[f] * sw[s] * chains.cw[s];
+                double v2      = 0.;
                 for (unsigned int c = 0; c < 3; ++c)
                   {
                     const double vc =
@@ -141,7 +141,8 @@ namespace YarnImpact
                       {
                         double l;
                         const double e = truss_strain(x, i, nf, L0, &l);
-                        elastic += 0.5 * truss_k * fw[f] * (l - L0) * (l - L0);
+                        elastic += 0.5 * truss_k * fw[f] * chains.tw[s] *
+                                   (l - L0) * (l - L0);
                         smax = std::max(smax, e);
                       }
                   }
@@ -211,7 +212,8 @@ namespace YarnImpact
                              ey = pos[3 * i + 1] - contact_at.yc;
                 const double delta =
                   std::max(0., contact_at.Rr - std::sqrt(ex * ex + ey * ey));
-                contact += fw[f] * sw[s] * law.energy(delta, &xi_p[3 * i]);
+                contact += fw[f] * sw[s] * chains.cw[s] *
+                           law.energy(delta, &xi_p[3 * i]);
               }
         });
 

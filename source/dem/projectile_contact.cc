@@ -86,7 +86,7 @@ namespace YarnImpact
                                          &xi_p[3 * i],
                                          fc,
                                          diss);
-                  const double w = chains.fw[f] * chains.sw[s];
+                  const double w = chains.fw[f] * chains.sw[s] * chains.cw[s];
                   F[3 * i] += w * fc[0];
                   F[3 * i + 1] += w * fc[1];
                   F[3 * i + 2] += w * fc[2];

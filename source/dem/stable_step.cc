@@ -138,7 +138,7 @@ namespace YarnImpact
                                  x[3 * j + 1] - x[3 * i + 1],
                                  x[3 * j + 2] - x[3 * i + 2]};
               const double l  = normalise(e);
-              const double k  = chains.truss_k * chains.fw[f];
+              const double k  = chains.truss_k * chains.fw[f] * chains.tw[s];
               const double kg = k * std::max(0., 1. - chains.L0 / l);
               add(i, e, k, kg);
               add(j, e, k, kg);
@@ -216,7 +216,8 @@ namespace YarnImpact
                       continue;
                     n[0] /= rho;
                     n[1] /= rho;
-                    const double w = 0.5 * chains.fw[f] * chains.sw[s];
+                    const double w =
+                      0.5 * chains.fw[f] * chains.sw[s] * chains.cw[s];
                     add(i, n, w * k_p, w * k_pt);
                   }
               }

@@ -34,6 +34,7 @@ namespace YarnImpact
         for (unsigned int s = t_begin; s < t_end; ++s)
           {
             const std::size_t b0 = decomposition.local_index(s, 0);
+            const double tw      = chains.tw[s];
             for (unsigned int f = 0; f < nf; ++f)
               {
                 const std::size_t i = b0 + f, j = i + nf;
@@ -42,7 +43,7 @@ namespace YarnImpact
                 const double e[3] = {x[3 * j] - x[3 * i],
                                      x[3 * j + 1] - x[3 * i + 1],
                                      x[3 * j + 2] - x[3 * i + 2]};
-                const double k    = chains.truss_k * chains.fw[f];
+                const double k    = chains.truss_k * chains.fw[f] * tw;
                 double t[3];
                 const double strain = truss_force(e, k, L0, t);
                 if (failure && strain > failure_strain)

@@ -51,12 +51,23 @@ namespace YarnImpact
     {
       const auto &yarn = shared.yarn;
       projectile_speed = std::abs(projectile.velocity());
-      create_yarn_mesh(tria,
-                       yarn,
-                       shared.general.symmetry,
-                       parameters.n_axial_cells,
-                       parameters.section_refinements,
-                       parameters.preserve_section_area);
+      // A part of a hybrid yarn (FE::Parameters::layer_weight), or the
+      // whole yarn.
+      const bool part = !parameters.layer_weight.empty();
+      if (part)
+        create_yarn_part_mesh(tria,
+                              yarn,
+                              parameters.part_begin,
+                              parameters.layer_weight.size(),
+                              parameters.section_refinements,
+                              parameters.preserve_section_area);
+      else
+        create_yarn_mesh(tria,
+                         yarn,
+                         shared.general.symmetry,
+                         parameters.n_axial_cells,
+                         parameters.section_refinements,
+                         parameters.preserve_section_area);
       tria.refine_global(parameters.global_refinements);
       dof_handler.distribute_dofs(fe);
 
@@ -80,9 +91,19 @@ namespace YarnImpact
         refinement_factor;
       station_spacing =
         yarn.length / (parameters.n_axial_cells * refinement_factor);
-      n_stations         = parameters.n_axial_cells / 2 * refinement_factor + 1;
+      n_stations = parameters.n_axial_cells / 2 * refinement_factor + 1;
+      if (part)
+        {
+          n_layers = parameters.layer_weight.size();
+          station_spacing =
+            (0.5 * yarn.length - parameters.part_begin) / n_layers;
+          n_stations     = n_layers + 1;
+          station_origin = parameters.part_begin;
+        }
       cells_per_layer    = tria.n_global_active_cells() / n_layers;
-      const double x_min = reduced ? 0. : -0.5 * yarn.length;
+      const double x_min = part      ? parameters.part_begin
+                           : reduced ? 0.
+                                     : -0.5 * yarn.length;
 
       FE_Q<3> scalar_fe(1);
       QGauss<3> quadrature(2);
@@ -123,6 +144,13 @@ namespace YarnImpact
             owned_cells.push_back(cell_index.size());
           fe_values.reinit(typename Triangulation<3>::cell_iterator(cell));
           cell_index.push_back(cell->active_cell_index());
+          // The continuum weight of the cell's layer (a hybrid's part).
+          const double weight =
+            part ? parameters.layer_weight[std::min<unsigned int>(
+                     n_layers - 1,
+                     static_cast<unsigned int>(std::floor(
+                       (cell->center()[0] - x_min) / station_spacing)))]
+                 : 1.;
           double x_lo = std::numeric_limits<double>::max(), x_hi = -x_lo;
           double y_top = -std::numeric_limits<double>::max();
           for (unsigned int a = 0; a < n_nodes; ++a)
@@ -132,6 +160,8 @@ namespace YarnImpact
               for (unsigned int q = 0; q < n_q; ++q)
                 node_mass +=
                   law.density * fe_values.shape_value(a, q) * fe_values.JxW(q);
+              if (part)
+                node_mass *= weight;
               for (unsigned int d = 0; d < 3; ++d)
                 {
                   const auto local =
@@ -154,7 +184,8 @@ namespace YarnImpact
                   for (unsigned int d = 0; d < 3; ++d)
                     cells.grads[offset + gradient_index(q, a, d)] =
                       fe_values.shape_grad(a, q)[d];
-                cells.JxW.push_back(fe_values.JxW(q));
+                cells.JxW.push_back(part ? weight * fe_values.JxW(q)
+                                         : fe_values.JxW(q));
               }
           }
           // The local axis along the fibre: the one whose opposite faces
@@ -262,7 +293,7 @@ namespace YarnImpact
             const double x = reference_coordinate[node[0]];
             const double z = reference_coordinate[node[2]];
             node_station.push_back(static_cast<unsigned int>(
-              std::round(std::abs(x) / station_spacing)));
+              std::round((std::abs(x) - station_origin) / station_spacing)));
             std::array<bool, 3> fixed = {{false, false, false}};
             if (std::abs(std::abs(x) - 0.5 * yarn.length) < tol)
               fixed = {{true, true, true}};
@@ -659,6 +690,18 @@ namespace YarnImpact
          : section >= global                 ? "FE/Section refinements"
                                              : "FE/Global refinements");
       return e;
+    }
+
+
+    CouplingView
+    coupling_view(ImpactModel &model)
+    {
+#define YARN_IMPACT_FE_VIEW(type, Law, member)           \
+  if (auto *fe = dynamic_cast<YarnModel<Law> *>(&model)) \
+    return fe->coupling_view();
+      YARN_IMPACT_FE_FOR_EACH_LAW(YARN_IMPACT_FE_VIEW)
+#undef YARN_IMPACT_FE_VIEW
+      throw std::logic_error("FE::coupling_view: not an FE model");
     }
 
 

@@ -112,5 +112,48 @@ namespace YarnImpact
             }
       mesh.copy_triangulation(extruded);
     }
+
+
+    void
+    create_yarn_part_mesh(Triangulation<3, 3> &mesh,
+                          const Parameters::Yarn &yarn,
+                          const double x_begin,
+                          const unsigned int n_cells,
+                          const unsigned int section_refinements,
+                          const bool preserve_section_area)
+    {
+      Triangulation<2> section;
+      create_yarn_section(section,
+                          yarn.thickness_semi_axis,
+                          yarn.width_semi_axis,
+                          section_refinements,
+                          false,
+                          preserve_section_area);
+      const double length = 0.5 * yarn.length - x_begin;
+      Triangulation<3> extruded;
+      GridGenerator::extrude_triangulation(section,
+                                           n_cells + 1,
+                                           length,
+                                           extruded);
+      GridTools::transform(
+        [x_begin](const Point<3> &p) {
+          return Point<3>(p[2] + x_begin, p[0], p[1]);
+        },
+        extruded);
+      const double tol = 1e-6 * length / n_cells;
+      for (const auto &cell : extruded.active_cell_iterators())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            {
+              const Point<3> c = face->center();
+              if (std::abs(c[0] - 0.5 * yarn.length) < tol)
+                face->set_boundary_id(BoundaryIds::clamp);
+              else if (std::abs(c[0] - x_begin) < tol)
+                face->set_boundary_id(BoundaryIds::coupled_end);
+              else
+                face->set_boundary_id(BoundaryIds::lateral);
+            }
+      mesh.copy_triangulation(extruded);
+    }
   } // namespace FE
 } // namespace YarnImpact

@@ -9,6 +9,7 @@
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/fe/cell_kernel.h>
 #include <yarn_impact/fe/contact.h>
+#include <yarn_impact/fe/fe_model.h>
 #include <yarn_impact/fe/parameters.h>
 
 #include <deal.II/distributed/tria.h>
@@ -130,6 +131,21 @@ namespace YarnImpact
         return tria.n_global_active_cells();
       }
 
+      /** See FE::coupling_view(). */
+      CouplingView
+      coupling_view()
+      {
+        CouplingView v;
+        v.nodes                = &nodes;
+        v.reference_coordinate = &reference_coordinate;
+        v.displacement         = displacement.begin();
+        v.velocity             = velocity.begin();
+        v.force                = force.begin();
+        v.mass                 = lumped_mass.begin();
+        v.inverse_mass         = inverse_mass.begin();
+        return v;
+      }
+
     private:
       /** Whether some cell layer has broken through, leaving no load path
        * between the clamps. Collective. */
@@ -183,6 +199,8 @@ namespace YarnImpact
       unsigned int n_layers        = 0;
       unsigned int cells_per_layer = 0;
       double station_spacing       = 0.;
+      /** |x| of station 0 [m]: 0, or the start of a hybrid's part. */
+      double station_origin = 0.;
       std::vector<double> initial_width;
       double total_mass        = 0.;
       double top               = 0.;

@@ -7,8 +7,10 @@
 
 #include <mpi.h>
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace YarnImpact
 {
@@ -26,6 +28,39 @@ namespace YarnImpact
      * for a DEM model. */
     std::string
     statistics(const ImpactModel &model);
+
+    /**
+     * What a coupling (coupling/hybrid_model.h) reads and writes of a DEM
+     * model between its compute_forces() and its kick: the layout (fibres
+     * and stations, the same on every rank), the stations this rank owns,
+     * and this rank's sphere arrays (3 values per sphere: x, y, z). Valid
+     * until the model's next step: the arrays may move when the ghost
+     * layers grow.
+     */
+    struct CouplingView
+    {
+      /** Modelled fibres and stations [-]. */
+      unsigned int n_fibres = 0, n_stations = 0;
+      /** The stations this rank owns: [station_begin, station_end). */
+      unsigned int station_begin = 0, station_end = 0;
+      /** Reference x of each station [m]; reference y and z of each fibre
+       * [m]. */
+      const std::vector<double> *station_x = nullptr, *fibre_y = nullptr,
+                                *fibre_z = nullptr;
+      /** Positions [m], velocities [m/s] and forces [N] of this rank's
+       * spheres, indexed by local_index(). */
+      double *position = nullptr, *velocity = nullptr, *force = nullptr;
+      /** Local index of the sphere of fibre @p f at station @p s (owned
+       * stations only). */
+      std::function<std::size_t(unsigned int s, unsigned int f)> local_index;
+      /** The inverse mass the kick applies to that sphere's force
+       * [1/kg]. */
+      std::function<double(unsigned int s, unsigned int f)> inverse_mass;
+    };
+
+    /** The coupling view of @p model, which must be a DEM impact model. */
+    CouplingView
+    coupling_view(ImpactModel &model);
   } // namespace DEM
 } // namespace YarnImpact
 

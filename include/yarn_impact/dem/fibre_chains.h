@@ -72,6 +72,14 @@ namespace YarnImpact
          * the inverse mass (0 when clamped, 2 on x = 0) [-], x-velocity mask
          * (0 on x = 0) [-]. */
         std::vector<double> sx0, sw, sinv, xmask;
+        /** Per station: the coupling's particle weight (mass, contacts,
+         * energies) [-]; per truss from station s to s + 1: its weight
+         * (stiffness, energy) [-]. All 1 without a coupling
+         * (Parameters::station_weight). */
+        std::vector<double> cw, tw;
+        /** Whether the weights come from a coupling (then the last station
+         * is free: its motion is the coupling's). */
+        bool coupled = false;
       };
 
 

@@ -7,6 +7,7 @@
 #include <yarn_impact/dem/packing.h>
 
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -118,6 +119,17 @@ namespace YarnImpact
         missed_contact
       };
       ListRebuilds list_rebuilds = ListRebuilds::criterion;
+
+      /**
+       * Set by a coupling (`Model = hybrid`, coupling/hybrid_model.h), never
+       * by a `.prm`: the particle weight of the bridging domain
+       * (doc/hybrid.md) per modelled station (sphere masses, contacts,
+       * kinetic and contact energies) and per truss after each station
+       * (stiffness, strain energy). With them, the last station is the
+       * end of the DEM part, tied to the continuum, not a clamp. Empty: the
+       * DEM alone, every weight 1.
+       */
+      std::vector<double> station_weight, truss_weight;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

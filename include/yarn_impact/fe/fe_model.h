@@ -8,7 +8,9 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <memory>
+#include <vector>
 
 namespace YarnImpact
 {
@@ -42,6 +44,30 @@ namespace YarnImpact
     MemoryEstimate
     memory_estimate(const YarnImpact::Parameters::Shared &shared,
                     const Parameters &parameters);
+
+    /**
+     * What a coupling (coupling/hybrid_model.h) reads and writes of an FE
+     * model between its compute_forces() and its kick: this rank's owned
+     * nodes with the local indices of their x, y, z degrees of freedom, and
+     * the local arrays of the owned degrees of freedom. Valid for the
+     * model's lifetime.
+     */
+    struct CouplingView
+    {
+      /** Owned nodes: local indices of their x, y, z dofs. */
+      const std::vector<std::array<unsigned int, 3>> *nodes = nullptr;
+      /** Reference coordinate of each local dof (its own component) [m]. */
+      const std::vector<double> *reference_coordinate = nullptr;
+      /** Displacement [m], velocity [m/s], force [N], lumped (weighted)
+       * mass [kg] and the inverse mass the kick applies (0 on a fixed dof)
+       * [1/kg] of the owned dofs, by local index. */
+      double *displacement = nullptr, *velocity = nullptr, *force = nullptr;
+      const double *mass = nullptr, *inverse_mass = nullptr;
+    };
+
+    /** The coupling view of @p model, which must be an FE impact model. */
+    CouplingView
+    coupling_view(ImpactModel &model);
 
     /** Create the FE model of the yarn described by @p shared. */
     std::unique_ptr<ImpactModel>

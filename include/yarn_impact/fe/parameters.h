@@ -4,6 +4,7 @@
 #include <yarn_impact/contact/contact_law.h>
 
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -93,6 +94,17 @@ namespace YarnImpact
       CharmetantParameters charmetant;
       LinearParameters linear;
       ContactParameters contact;
+
+      /**
+       * Set by a coupling (`Model = hybrid`, coupling/hybrid_model.h), never
+       * by a `.prm`: the FE part of a hybrid yarn (half symmetry) spans
+       * x in [part_begin, L/2] [m] in layer_weight.size() equal cell layers,
+       * the end x = part_begin free (the coupling moves it), and the cells
+       * of layer k carry the continuum weight layer_weight[k] [-] in their
+       * mass, stress and energies (doc/hybrid.md). Empty: the whole yarn.
+       */
+      double part_begin = 0.;
+      std::vector<double> layer_weight;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

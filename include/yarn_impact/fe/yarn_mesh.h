@@ -24,6 +24,9 @@ namespace YarnImpact
       constexpr unsigned int symmetry_x = 2;
       /** Symmetry plane z = 0. */
       constexpr unsigned int symmetry_z = 3;
+      /** The end x = x_begin of a part of the yarn (create_yarn_part_mesh):
+       * free, moved by a coupling. */
+      constexpr unsigned int coupled_end = 4;
     } // namespace BoundaryIds
 
     /**
@@ -55,6 +58,20 @@ namespace YarnImpact
                      const unsigned int n_axial_cells,
                      const unsigned int section_refinements,
                      const bool preserve_section_area);
+
+    /**
+     * A part of the yarn (half symmetry): the section extruded along x over
+     * [@p x_begin, L/2] in @p n_cells equal layers; the face x = x_begin has
+     * the boundary id BoundaryIds::coupled_end, the others as in
+     * create_yarn_mesh().
+     */
+    void
+    create_yarn_part_mesh(dealii::Triangulation<3, 3> &mesh,
+                          const YarnImpact::Parameters::Yarn &yarn,
+                          const double x_begin,
+                          const unsigned int n_cells,
+                          const unsigned int section_refinements,
+                          const bool preserve_section_area);
   } // namespace FE
 } // namespace YarnImpact
 
