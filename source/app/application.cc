@@ -284,11 +284,16 @@ namespace YarnImpact
         return;
       const auto model = p.model;
       std::vector<std::string> lines;
-      if (model != ModelType::dem)
+      if (model == ModelType::hybrid)
+        lines.push_back(check_memory(
+          Coupling::memory_estimate(p.shared, p.fe, p.dem, p.hybrid),
+          "hybrid",
+          MPI_COMM_WORLD));
+      else if (model != ModelType::dem)
         lines.push_back(check_memory(FE::memory_estimate(p.shared, p.fe),
                                      "fe",
                                      MPI_COMM_WORLD));
-      if (model != ModelType::fe)
+      if (model != ModelType::fe && model != ModelType::hybrid)
         lines.push_back(check_memory(DEM::memory_estimate(p.shared, p.dem),
                                      "dem",
                                      MPI_COMM_WORLD));
@@ -307,6 +312,7 @@ namespace YarnImpact
     Parameters::Shared::declare_parameters(prm);
     FE::Parameters::declare_parameters(prm);
     DEM::Parameters::declare_parameters(prm);
+    Coupling::HybridParameters::declare_parameters(prm);
     DEM::ElementaryTestParameters::declare_parameters(prm);
   }
 
@@ -317,6 +323,7 @@ namespace YarnImpact
     shared.parse_parameters(prm);
     fe.parse_parameters(prm);
     dem.parse_parameters(prm);
+    hybrid.parse_parameters(prm);
     elementary.parse_parameters(prm);
     Parameters::require(elementary.loading == DEM::ElementaryLoading::none ||
                           model == ModelType::dem,
@@ -327,6 +334,8 @@ namespace YarnImpact
     // writes anything (with Model = both, before the FE part runs).
     if (elementary.loading != DEM::ElementaryLoading::none)
       DEM::validate(shared, dem, true);
+    else if (model == ModelType::hybrid)
+      Coupling::validate(shared, fe, dem, hybrid);
     else
       {
         if (model != ModelType::dem)

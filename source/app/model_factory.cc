@@ -1,5 +1,6 @@
 #include <yarn_impact/app/application.h>
 #include <yarn_impact/app/model_factory.h>
+#include <yarn_impact/coupling/hybrid_model.h>
 #include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/fe/fe_model.h>
 
@@ -12,10 +13,13 @@ namespace YarnImpact
   {
     prm.declare_entry("Model",
                       "fe",
-                      dealii::Patterns::Selection("fe|dem|both"),
+                      dealii::Patterns::Selection("fe|dem|both|hybrid"),
                       "Model to run: the mesoscopic finite-element yarn "
                       "(fe), the microscopic discrete-element fibres (dem), "
-                      "or both on the same problem (both).");
+                      "both on the same problem (both), or the hybrid yarn: "
+                      "the DEM fibres near the impact, the FE continuum "
+                      "elsewhere, coupled in an overlap (hybrid, subsection "
+                      "Hybrid, doc/hybrid.md).");
   }
 
 
@@ -23,9 +27,10 @@ namespace YarnImpact
   parse_model_type(dealii::ParameterHandler &prm)
   {
     const std::string m = prm.get("Model");
-    return (m == "fe"    ? ModelType::fe
-            : m == "dem" ? ModelType::dem
-                         : ModelType::both);
+    return (m == "fe"       ? ModelType::fe
+            : m == "dem"    ? ModelType::dem
+            : m == "hybrid" ? ModelType::hybrid
+                            : ModelType::both);
   }
 
 
@@ -36,6 +41,12 @@ namespace YarnImpact
   {
     if (type == ModelType::dem)
       return DEM::create_model(p.shared, p.dem, communicator);
+    if (type == ModelType::hybrid)
+      return Coupling::create_hybrid_model(p.shared,
+                                           p.fe,
+                                           p.dem,
+                                           p.hybrid,
+                                           communicator);
     return FE::create_model(p.shared, p.fe, communicator);
   }
 } // namespace YarnImpact

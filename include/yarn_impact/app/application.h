@@ -3,6 +3,7 @@
 
 #include <yarn_impact/app/model_factory.h>
 #include <yarn_impact/core/parameters.h>
+#include <yarn_impact/coupling/hybrid_model.h>
 #include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/dem/elementary_test.h>
 #include <yarn_impact/fe/parameters.h>
@@ -25,6 +26,7 @@ namespace YarnImpact
     Parameters::Shared shared;
     FE::Parameters fe;
     DEM::Parameters dem;
+    Coupling::HybridParameters hybrid;
     DEM::ElementaryTestParameters elementary;
 
     /** Declare every entry. */

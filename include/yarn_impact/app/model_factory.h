@@ -19,9 +19,10 @@ namespace YarnImpact
   /** Which model(s) a run drives (the top-level entry `Model`). */
   enum class ModelType
   {
-    fe,   ///< the mesoscopic finite-element yarn
-    dem,  ///< the microscopic discrete-element fibres
-    both, ///< both on the same problem, then compared
+    fe,     ///< the mesoscopic finite-element yarn
+    dem,    ///< the microscopic discrete-element fibres
+    both,   ///< both on the same problem, then compared
+    hybrid, ///< the DEM where the yarn breaks, the FE elsewhere, coupled
   };
 
   /** Declare the entry `Model` (top level). */

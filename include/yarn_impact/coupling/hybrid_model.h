@@ -1,0 +1,110 @@
+#ifndef yarn_impact_coupling_hybrid_model_h
+#define yarn_impact_coupling_hybrid_model_h
+
+#include <yarn_impact/core/impact_model.h>
+#include <yarn_impact/core/memory_estimate.h>
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/dem/parameters.h>
+#include <yarn_impact/fe/parameters.h>
+
+#include <mpi.h>
+
+#include <memory>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    /** The parameters of `Model = hybrid` (subsection `Hybrid`). */
+    struct HybridParameters
+    {
+      /** Half-length a of the DEM part, |x| <= a, before rounding to whole
+       * FE cells from the clamp [m]. */
+      double dem_half_length = 3e-3;
+      /** Width w of the overlap a - w <= |x| <= a, before rounding to whole
+       * FE cells [m]. */
+      double overlap_width = 1e-3;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /**
+     * Where the two parts of a hybrid yarn lie (half symmetry, x >= 0),
+     * rounded so that the FE cells of the overlap hold whole DEM truss
+     * lengths and its node layers sit on DEM stations (doc/hybrid.md
+     * section 3.1).
+     */
+    struct HybridLayout
+    {
+      /** The DEM's station spacing l, L / 2 over a whole number of trusses
+       * [m]. */
+      double station_spacing = 0.;
+      /** Trusses per FE cell m [-], and the FE cell length h = m l [m]. */
+      unsigned int cell_trusses = 0;
+      double cell_length        = 0.;
+      /** Cells of the overlap n_w and of the whole FE part [-]. */
+      unsigned int overlap_cells = 0, fe_cells = 0;
+      /** Trusses of the DEM part along a fibre [-]. */
+      unsigned int dem_trusses = 0;
+      /** The DEM part's half-length a and the overlap's start a - w [m]. */
+      double dem_half_length = 0., overlap_begin = 0.;
+      /** First DEM station of the overlap [-]. */
+      unsigned int first_coupled_station = 0;
+
+      /** Particle weight beta of overlap cell @p k (0 at a - w) [-]. */
+      double
+      particle_weight(const unsigned int k) const
+      {
+        return 1. - (k + 0.5) / overlap_cells;
+      }
+    };
+
+    /** The layout of @p hybrid for the yarn of @p shared; throws InputError
+     * naming the parameter when it cannot be built. */
+    HybridLayout
+    hybrid_layout(const YarnImpact::Parameters::Shared &shared,
+                  const FE::Parameters &fe,
+                  const DEM::Parameters &dem,
+                  const HybridParameters &hybrid);
+
+    /** The set-up checks of `Model = hybrid`, with those of both parts;
+     * throws InputError naming the parameter. */
+    void
+    validate(const YarnImpact::Parameters::Shared &shared,
+             const FE::Parameters &fe,
+             const DEM::Parameters &dem,
+             const HybridParameters &hybrid);
+
+    /** Memory of both parts; the parameter that makes it large is the DEM
+     * half-length. */
+    MemoryEstimate
+    memory_estimate(const YarnImpact::Parameters::Shared &shared,
+                    const FE::Parameters &fe,
+                    const DEM::Parameters &dem,
+                    const HybridParameters &hybrid);
+
+    /**
+     * The hybrid yarn (doc/hybrid.md): the DEM fibres on |x| <= a, the FE
+     * continuum (density and axial modulus from the fibres, no failure) on
+     * |x| >= a - w, coupled in the overlap by the bridging domain method
+     * (BridgingConstraint): weights per FE cell layer, the overlap's
+     * spheres moving with the continuum.
+     */
+    std::unique_ptr<ImpactModel>
+    create_hybrid_model(const YarnImpact::Parameters::Shared &shared,
+                        const FE::Parameters &fe,
+                        const DEM::Parameters &dem,
+                        const HybridParameters &hybrid,
+                        const MPI_Comm communicator);
+  } // namespace Coupling
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,721 @@
+// The hybrid yarn (doc/hybrid.md): the DEM fibres where the yarn wraps the
+// nose and breaks, the FE continuum elsewhere, coupled in an overlap by the
+// bridging domain method. The one place that knows both models.
+
+#include <yarn_impact/core/impact_simulation.h>
+#include <yarn_impact/core/output_file.h>
+#include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/core/projectile.h>
+#include <yarn_impact/coupling/bridging_domain.h>
+#include <yarn_impact/coupling/hybrid_model.h>
+#include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/fe/fe_model.h>
+#include <yarn_impact/fe/yarn_mesh.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/tria.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    using namespace dealii;
+    using YarnImpact::Parameters::require;
+
+
+    void
+    HybridParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Hybrid");
+      prm.declare_entry(
+        "DEM half-length",
+        "3e-3",
+        Patterns::Double(),
+        "Model = hybrid: the DEM fibres model |x| <= a, this half-length, "
+        "rounded to whole FE cells from the clamp; it must hold the "
+        "projectile's contact zone and every fibre break (the run stops, "
+        "naming this parameter, when the FE part's fibre strain comes within "
+        "10 % of Yarn/Failure strain) [m].");
+      prm.declare_entry(
+        "Overlap width",
+        "1e-3",
+        Patterns::Double(),
+        "Model = hybrid: width w of the overlap a - w <= |x| <= a where both "
+        "models exist and their weights go from the DEM's to the FE's, "
+        "rounded to whole FE cells (at least one) [m].");
+      prm.leave_subsection();
+    }
+
+
+    void
+    HybridParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Hybrid");
+      dem_half_length =
+        YarnImpact::Parameters::get_positive_double(prm,
+                                                    "Hybrid",
+                                                    "DEM half-length");
+      overlap_width =
+        YarnImpact::Parameters::get_positive_double(prm,
+                                                    "Hybrid",
+                                                    "Overlap width");
+      prm.leave_subsection();
+    }
+
+
+    HybridLayout
+    hybrid_layout(const YarnImpact::Parameters::Shared &shared,
+                  const FE::Parameters &fe,
+                  const DEM::Parameters &dem,
+                  const HybridParameters &hybrid)
+    {
+      const double half = 0.5 * shared.yarn.length;
+      HybridLayout l;
+      // The DEM's trusses as FibreChains lays them on the whole yarn: L/2
+      // in K equal trusses.
+      const unsigned int K =
+        static_cast<unsigned int>(std::ceil(half / dem.sphere_spacing - 1e-9));
+      l.station_spacing = half / K;
+      // FE cells of about the FE model's own length, whole trusses each.
+      const double nominal = shared.yarn.length / fe.n_axial_cells;
+      l.cell_trusses =
+        std::max<long>(1, std::lround(nominal / l.station_spacing));
+      l.cell_length = l.cell_trusses * l.station_spacing;
+      l.overlap_cells =
+        std::max<long>(1, std::lround(hybrid.overlap_width / l.cell_length));
+      const long fe_only =
+        std::lround((half - hybrid.dem_half_length) / l.cell_length);
+      require(fe_only >= 1,
+              "Hybrid/DEM half-length",
+              "must leave at least one FE cell of " +
+                std::to_string(l.cell_length * 1e3) +
+                " mm between the DEM part and the clamp");
+      require(static_cast<long>(K) - fe_only * long(l.cell_trusses) >
+                long(l.overlap_cells * l.cell_trusses),
+              "Hybrid/Overlap width",
+              "must be smaller than Hybrid/DEM half-length (after rounding "
+              "both to whole FE cells)");
+      l.fe_cells        = fe_only + l.overlap_cells;
+      l.dem_trusses     = K - fe_only * l.cell_trusses;
+      l.dem_half_length = l.dem_trusses * l.station_spacing;
+      l.first_coupled_station =
+        l.dem_trusses - l.overlap_cells * l.cell_trusses;
+      l.overlap_begin = l.first_coupled_station * l.station_spacing;
+      return l;
+    }
+
+
+    namespace
+    {
+      /** The DEM part: the yarn |x| <= a, with the weights of @p l. */
+      void
+      dem_part(const YarnImpact::Parameters::Shared &shared,
+               const DEM::Parameters &dem,
+               const HybridLayout &l,
+               YarnImpact::Parameters::Shared &part_shared,
+               DEM::Parameters &part)
+      {
+        part_shared             = shared;
+        part_shared.yarn.length = 2. * l.dem_half_length;
+        part                    = dem;
+        part.sphere_spacing     = l.station_spacing;
+        part.truss_weight.assign(l.dem_trusses, 1.);
+        for (unsigned int s = l.first_coupled_station; s < l.dem_trusses; ++s)
+          part.truss_weight[s] =
+            l.particle_weight((s - l.first_coupled_station) / l.cell_trusses);
+        // A station's weight is the mean of its two trusses' (the end's
+        // outer side is the FE's alone).
+        part.station_weight.assign(l.dem_trusses + 1, 1.);
+        for (unsigned int s = 1; s <= l.dem_trusses; ++s)
+          part.station_weight[s] =
+            0.5 * (part.truss_weight[s - 1] +
+                   (s < l.dem_trusses ? part.truss_weight[s] : 0.));
+      }
+
+
+      /** The FE part: x in [a - w, L/2], the DEM's yarn, no failure. */
+      void
+      fe_part(const YarnImpact::Parameters::Shared &shared,
+              const FE::Parameters &fe,
+              const HybridLayout &l,
+              YarnImpact::Parameters::Shared &part_shared,
+              FE::Parameters &part)
+      {
+        part_shared              = shared;
+        part_shared.yarn.failure = false;
+        part                     = fe;
+        // The same yarn on both sides (doc/hybrid.md section 3.2).
+        part.density_from_fibres       = true;
+        part.axial_modulus_from_fibres = true;
+        part.part_begin                = l.overlap_begin;
+        part.layer_weight.assign(l.fe_cells, 1.);
+        for (unsigned int k = 0; k < l.overlap_cells; ++k)
+          part.layer_weight[k] = 1. - l.particle_weight(k);
+      }
+    } // namespace
+
+
+    void
+    validate(const YarnImpact::Parameters::Shared &shared,
+             const FE::Parameters &fe,
+             const DEM::Parameters &dem,
+             const HybridParameters &hybrid)
+    {
+      require(shared.general.symmetry == YarnImpact::Parameters::Symmetry::half,
+              "Symmetry",
+              "must be half for Model = hybrid (the coupled overlap is built "
+              "on x >= 0 without the plane z = 0)");
+      require(fe.global_refinements == 0,
+              "FE/Global refinements",
+              "must be 0 for Model = hybrid (the overlap's weights are per "
+              "cell layer; refine with FE/Cells along the axis)");
+      const HybridLayout l = hybrid_layout(shared, fe, dem, hybrid);
+      std::ostringstream zone;
+      zone << "leaves the DEM-only zone |x| < " << l.overlap_begin * 1e3
+           << " mm (after rounding to whole FE cells) no wider than the "
+              "projectile's contact zone, its radius "
+           << 0.5 * shared.projectile.diameter * 1e3
+           << " mm: raise it or narrow Hybrid/Overlap width";
+      require(l.overlap_begin >
+                0.5 * shared.projectile.diameter + shared.yarn.fibre_diameter,
+              "Hybrid/DEM half-length",
+              zone.str());
+      YarnImpact::Parameters::Shared dem_shared, fe_shared;
+      DEM::Parameters dem_p;
+      FE::Parameters fe_p;
+      dem_part(shared, dem, l, dem_shared, dem_p);
+      fe_part(shared, fe, l, fe_shared, fe_p);
+      FE::validate(fe_shared, fe_p);
+      DEM::validate(dem_shared, dem_p);
+    }
+
+
+    MemoryEstimate
+    memory_estimate(const YarnImpact::Parameters::Shared &shared,
+                    const FE::Parameters &fe,
+                    const DEM::Parameters &dem,
+                    const HybridParameters &hybrid)
+    {
+      const HybridLayout l = hybrid_layout(shared, fe, dem, hybrid);
+      YarnImpact::Parameters::Shared dem_shared, fe_shared;
+      DEM::Parameters dem_p;
+      FE::Parameters fe_p;
+      dem_part(shared, dem, l, dem_shared, dem_p);
+      fe_part(shared, fe, l, fe_shared, fe_p);
+      MemoryEstimate e = DEM::memory_estimate(dem_shared, dem_p);
+      e.bytes += FE::memory_estimate(fe_shared, fe_p).bytes;
+      e.parameter = "Hybrid/DEM half-length";
+      return e;
+    }
+
+
+    namespace
+    {
+      /**
+       * Where a point (y, z) of the section lies: the 2D section cell whose
+       * (clamped) unit coordinates are nearest, and the bilinear shape
+       * values of its four vertices there. A fibre centre outside the
+       * polygonal section (the packing ellipse can be a little larger) is
+       * tied to the nearest point of the nearest cell.
+       */
+      void
+      locate_in_section(const Triangulation<2> &section,
+                        const Point<2> &p,
+                        std::array<unsigned int, 4> &vertices,
+                        std::array<double, 4> &values)
+      {
+        static const MappingQ1<2> mapping;
+        static const FE_Q<2> q1(1);
+        double best = std::numeric_limits<double>::max();
+        for (const auto &cell : section.active_cell_iterators())
+          {
+            Point<2> u;
+            try
+              {
+                u = mapping.transform_real_to_unit_cell(cell, p);
+              }
+            catch (...)
+              {
+                continue;
+              }
+            double outside = 0.;
+            for (unsigned int d = 0; d < 2; ++d)
+              outside = std::max({outside, -u[d], u[d] - 1.});
+            if (outside < best)
+              {
+                best = outside;
+                for (unsigned int d = 0; d < 2; ++d)
+                  u[d] = std::clamp(u[d], 0., 1.);
+                for (unsigned int v = 0; v < 4; ++v)
+                  {
+                    vertices[v] = cell->vertex_index(v);
+                    values[v]   = q1.shape_value(v, u);
+                  }
+              }
+          }
+        AssertThrow(best < std::numeric_limits<double>::max(),
+                    ExcMessage("Hybrid: a fibre centre could not be placed "
+                               "in the FE section"));
+      }
+
+
+      /**
+       * The hybrid yarn: the two parts, and the coupling applied after
+       * both have computed their forces (doc/hybrid.md section 3).
+       */
+      class HybridModel : public ImpactModel
+      {
+      public:
+        HybridModel(const YarnImpact::Parameters::Shared &shared,
+                    const FE::Parameters &fe,
+                    const DEM::Parameters &dem,
+                    const HybridParameters &hybrid,
+                    const MPI_Comm communicator)
+          : shared(shared)
+          , fe_parameters(fe)
+          , layout(hybrid_layout(shared, fe, dem, hybrid))
+          , communicator(communicator)
+        {
+          DEM::Parameters dem_p;
+          FE::Parameters fe_p;
+          dem_part(shared, dem, layout, dem_shared, dem_p);
+          fe_part(shared, fe, layout, fe_shared, fe_p);
+          fe_model  = FE::create_model(fe_shared, fe_p, communicator);
+          dem_model = DEM::create_model(dem_shared, dem_p, communicator);
+        }
+
+        std::string
+        name() const override
+        {
+          return "hybrid";
+        }
+
+        void
+        setup(const Projectile &projectile, std::ostream &out) override;
+
+        double
+        yarn_top() const override
+        {
+          return dem_model->yarn_top();
+        }
+
+        double
+        stable_time_step() const override
+        {
+          return std::min(fe_model->stable_time_step(),
+                          dem_model->stable_time_step());
+        }
+
+        double
+        compute_forces(const Projectile &projectile, const double dt) override
+        {
+          const double f_fe  = fe_model->compute_forces(projectile, dt);
+          const double f_dem = dem_model->compute_forces(projectile, dt);
+          if (f_fe != 0.)
+            throw RunError(
+              "the projectile touches the FE part of the hybrid yarn: raise "
+              "Hybrid/DEM half-length");
+          couple(dt);
+          return f_fe + f_dem;
+        }
+
+        void
+        kick(const double dt) override
+        {
+          fe_model->kick(dt);
+          dem_model->kick(dt);
+        }
+
+        void
+        drift(const double dt) override
+        {
+          fe_model->drift(dt);
+          dem_model->drift(dt);
+        }
+
+        Observables
+        observables() const override;
+
+        AxialProperties
+        axial_properties() const override
+        {
+          return dem_model->axial_properties();
+        }
+
+        double
+        mass() const override
+        {
+          return fe_model->mass() + dem_model->mass();
+        }
+
+        std::string
+        write_snapshot(const std::string &directory,
+                       const unsigned int index,
+                       const double time) const override;
+
+        unsigned long
+        n_elements() const override
+        {
+          return dem_model->n_elements();
+        }
+
+        void
+        save_state(Checkpoint::Writer &out) const override
+        {
+          out.tag("hybrid model");
+          fe_model->save_state(out);
+          dem_model->save_state(out);
+          out.put(coupling_work);
+        }
+
+        void
+        load_state(Checkpoint::Reader &in) override
+        {
+          in.tag("hybrid model");
+          fe_model->load_state(in);
+          dem_model->load_state(in);
+          in.get(coupling_work);
+        }
+
+        std::string
+        remarks() const override
+        {
+          std::ostringstream s;
+          s << dem_model->remarks();
+          s << "Hybrid coupling: work done by the FE part on the DEM part "
+               "through the overlap "
+            << std::setprecision(6) << symmetry() * coupling_work * 1e3
+            << " mJ\n";
+          return s.str();
+        }
+
+      private:
+        /** Replace the forces of the overlap's nodes and spheres by those
+         * that give each the coupled acceleration (BridgingConstraint). */
+        void
+        couple(const double dt);
+
+        double
+        symmetry() const
+        {
+          return YarnImpact::Parameters::symmetry_factor(
+            shared.general.symmetry);
+        }
+
+        const YarnImpact::Parameters::Shared &shared;
+        const FE::Parameters fe_parameters;
+        const HybridLayout layout;
+        const MPI_Comm communicator;
+        /** The parts' problems (the FE model keeps a reference to its
+         * own). */
+        YarnImpact::Parameters::Shared dem_shared, fe_shared;
+        std::unique_ptr<ImpactModel> fe_model, dem_model;
+
+        BridgingConstraint constraint;
+        /** Coupled FE nodes owned here: coupled index and local dofs. */
+        std::vector<std::pair<unsigned int, std::array<unsigned int, 3>>>
+          owned_nodes;
+        unsigned int n_fibres = 0;
+        /** Work done by the continuum on the particles (the multipliers'
+         * power, summed), in the modelled part [J]. */
+        double coupling_work = 0.;
+        std::vector<double> node_force, particle_force, node_acceleration,
+          particle_acceleration, multipliers, particle_velocity;
+      };
+
+
+      void
+      HybridModel::setup(const Projectile &projectile, std::ostream &out)
+      {
+        fe_model->setup(projectile, out);
+        dem_model->setup(projectile, out);
+
+        // The section the FE part was extruded from: its vertices are the
+        // coupled nodes of each node layer of the overlap.
+        Triangulation<2> section;
+        FE::create_yarn_section(section,
+                                shared.yarn.thickness_semi_axis,
+                                shared.yarn.width_semi_axis,
+                                fe_parameters.section_refinements,
+                                false,
+                                fe_parameters.preserve_section_area);
+        const std::vector<Point<2>> &vertices = section.get_vertices();
+        const unsigned int n_vertices         = vertices.size();
+        const unsigned int n_layers           = layout.overlap_cells + 1;
+        const unsigned int n_coupled          = n_layers * n_vertices;
+        const double h                        = layout.cell_length;
+        const double size_tol = 1e-6 * std::min(shared.yarn.thickness_semi_axis,
+                                                shared.yarn.width_semi_axis);
+
+        // The owned FE nodes of the overlap's layers, by (layer, vertex).
+        const FE::CouplingView fe = FE::coupling_view(*fe_model);
+        std::vector<double> node_mass(n_coupled, 0.), found(n_coupled, 0.);
+        for (const auto &node : *fe.nodes)
+          {
+            const double x = (*fe.reference_coordinate)[node[0]];
+            const double j = (x - layout.overlap_begin) / h;
+            if (j > layout.overlap_cells + 1e-6)
+              continue;
+            const unsigned int layer = std::lround(j);
+            const Point<2> p((*fe.reference_coordinate)[node[1]],
+                             (*fe.reference_coordinate)[node[2]]);
+            unsigned int v = 0;
+            for (unsigned int k = 1; k < n_vertices; ++k)
+              if (p.distance(vertices[k]) < p.distance(vertices[v]))
+                v = k;
+            AssertThrow(p.distance(vertices[v]) < size_tol,
+                        ExcMessage("Hybrid: an FE node of the overlap is not "
+                                   "a vertex of the section"));
+            const unsigned int c = layer * n_vertices + v;
+            owned_nodes.push_back({c, node});
+            node_mass[c] = fe.mass[node[0]];
+            found[c]     = 1.;
+          }
+        Utilities::MPI::sum(node_mass, communicator, node_mass);
+        Utilities::MPI::sum(found, communicator, found);
+        for (unsigned int c = 0; c < n_coupled; ++c)
+          AssertThrow(found[c] == 1.,
+                      ExcMessage("Hybrid: an overlap node of the FE part is "
+                                 "missing or owned twice"));
+        constraint = BridgingConstraint(n_coupled);
+        for (unsigned int c = 0; c < n_coupled; ++c)
+          constraint.set_node_mass(c, node_mass[c]);
+
+        // The overlap's spheres: fibre f of station s is particle
+        // (s - first) n_f + f, tied to the trilinear field at its reference
+        // position (the FE cells are extruded: linear in x times bilinear
+        // in the section).
+        const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
+        n_fibres                    = dem.n_fibres;
+        std::vector<std::array<unsigned int, 4>> fibre_vertices(n_fibres);
+        std::vector<std::array<double, 4>> fibre_values(n_fibres);
+        for (unsigned int f = 0; f < n_fibres; ++f)
+          locate_in_section(section,
+                            Point<2>((*dem.fibre_y)[f], (*dem.fibre_z)[f]),
+                            fibre_vertices[f],
+                            fibre_values[f]);
+        for (unsigned int s = layout.first_coupled_station;
+             s <= layout.dem_trusses;
+             ++s)
+          {
+            const double x = (*dem.station_x)[s];
+            const double t = (x - layout.overlap_begin) / h;
+            const unsigned int cell =
+              std::min<unsigned int>(layout.overlap_cells - 1,
+                                     t <= 0. ? 0u : unsigned(std::floor(t)));
+            const double xi = std::clamp(t - cell, 0., 1.);
+            for (unsigned int f = 0; f < n_fibres; ++f)
+              {
+                std::vector<unsigned int> nodes;
+                std::vector<double> values;
+                for (unsigned int side = 0; side < 2; ++side)
+                  for (unsigned int v = 0; v < 4; ++v)
+                    {
+                      const double value =
+                        (side == 0 ? 1. - xi : xi) * fibre_values[f][v];
+                      if (value != 0.)
+                        {
+                          nodes.push_back((cell + side) * n_vertices +
+                                          fibre_vertices[f][v]);
+                          values.push_back(value);
+                        }
+                    }
+                constraint.add_particle(1. / dem.inverse_mass(s, f),
+                                        nodes,
+                                        values);
+              }
+          }
+        constraint.factorize();
+        const unsigned int n_p = constraint.n_particles();
+        node_force.assign(3 * n_coupled, 0.);
+        node_acceleration.assign(3 * n_coupled, 0.);
+        particle_force.assign(3 * n_p, 0.);
+        particle_acceleration.assign(3 * n_p, 0.);
+        multipliers.assign(3 * n_p, 0.);
+        particle_velocity.assign(3 * n_p, 0.);
+        // The initial forces, as every step leaves them.
+        couple(0.);
+
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          out << "[hybrid] DEM part |x| <= " << layout.dem_half_length * 1e3
+              << " mm (" << layout.dem_trusses
+              << " trusses per fibre), overlap " << layout.overlap_begin * 1e3
+              << " to " << layout.dem_half_length * 1e3 << " mm ("
+              << layout.overlap_cells << " FE cells of "
+              << layout.cell_length * 1e3 << " mm = " << layout.cell_trusses
+              << " trusses), FE part to the clamp in " << layout.fe_cells
+              << " cells; " << n_coupled << " coupled FE nodes, " << n_p
+              << " coupled spheres; yarn mass " << mass() * 1e6 << " mg\n";
+      }
+
+
+      void
+      HybridModel::couple(const double dt)
+      {
+        const FE::CouplingView fe   = FE::coupling_view(*fe_model);
+        const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
+        std::fill(node_force.begin(), node_force.end(), 0.);
+        std::fill(particle_force.begin(), particle_force.end(), 0.);
+        std::fill(particle_velocity.begin(), particle_velocity.end(), 0.);
+        // Gather: each entry has one owner and the others add zeros, so the
+        // sums are exact and the same on every rank and partition.
+        for (const auto &[c, dofs] : owned_nodes)
+          for (unsigned int d = 0; d < 3; ++d)
+            node_force[3 * c + d] = fe.force[dofs[d]];
+        const unsigned int first   = layout.first_coupled_station;
+        const unsigned int s_begin = std::max(first, dem.station_begin);
+        const unsigned int s_end =
+          std::min(layout.dem_trusses + 1, dem.station_end);
+        for (unsigned int s = s_begin; s < s_end; ++s)
+          for (unsigned int f = 0; f < n_fibres; ++f)
+            {
+              const std::size_t i = dem.local_index(s, f);
+              const std::size_t p = std::size_t(s - first) * n_fibres + f;
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  particle_force[3 * p + d]    = dem.force[3 * i + d];
+                  particle_velocity[3 * p + d] = dem.velocity[3 * i + d];
+                }
+            }
+        Utilities::MPI::sum(node_force, communicator, node_force);
+        Utilities::MPI::sum(particle_force, communicator, particle_force);
+        Utilities::MPI::sum(particle_velocity, communicator, particle_velocity);
+
+        constraint.accelerations(node_force.data(),
+                                 particle_force.data(),
+                                 node_acceleration.data(),
+                                 particle_acceleration.data(),
+                                 multipliers.data());
+        double power = 0.;
+        for (unsigned int k = 0; k < multipliers.size(); ++k)
+          power += multipliers[k] * particle_velocity[k];
+        coupling_work += dt * power;
+
+        // Scatter: the force that gives each its coupled acceleration
+        // through its own kick.
+        for (const auto &[c, dofs] : owned_nodes)
+          for (unsigned int d = 0; d < 3; ++d)
+            fe.force[dofs[d]] = node_acceleration[3 * c + d] * fe.mass[dofs[d]];
+        for (unsigned int s = s_begin; s < s_end; ++s)
+          for (unsigned int f = 0; f < n_fibres; ++f)
+            {
+              const std::size_t i = dem.local_index(s, f);
+              const std::size_t p = std::size_t(s - first) * n_fibres + f;
+              const double m      = 1. / dem.inverse_mass(s, f);
+              for (unsigned int d = 0; d < 3; ++d)
+                dem.force[3 * i + d] = particle_acceleration[3 * p + d] * m;
+            }
+      }
+
+
+      Observables
+      HybridModel::observables() const
+      {
+        const Observables a = fe_model->observables();
+        const Observables b = dem_model->observables();
+        if (a.max_strain >= 0.9 * shared.yarn.failure_strain &&
+            shared.yarn.failure)
+          {
+            std::ostringstream s;
+            s << "the FE part's largest fibre strain " << a.max_strain
+              << " is within 10 % of Yarn/Failure strain "
+              << shared.yarn.failure_strain
+              << ": fibres would break outside the DEM part; raise "
+                 "Hybrid/DEM half-length";
+            throw RunError(s.str());
+          }
+        Observables o;
+        o.kinetic_energy    = a.kinetic_energy + b.kinetic_energy;
+        o.elastic_energy    = a.elastic_energy + b.elastic_energy;
+        o.contact_energy    = a.contact_energy + b.contact_energy;
+        o.dissipated_energy = a.dissipated_energy + b.dissipated_energy;
+        o.max_strain        = std::max(a.max_strain, b.max_strain);
+        o.n_failed          = b.n_failed;
+        o.n_eroded          = b.n_eroded;
+        o.n_damaged         = b.n_damaged;
+        o.cut_through       = b.cut_through;
+        // The profile: the DEM's stations up to the middle of the overlap,
+        // the FE's beyond.
+        const double middle =
+          0.5 * (layout.overlap_begin + layout.dem_half_length);
+        StationProfile &p = o.profile;
+        auto append = [&p](const StationProfile &q, const unsigned int k) {
+          p.position.push_back(q.position[k]);
+          p.axial_strain.push_back(q.axial_strain[k]);
+          p.deflection.push_back(q.deflection[k]);
+          p.width.push_back(q.width[k]);
+          p.initial_width.push_back(q.initial_width[k]);
+          p.rms_width.push_back(q.rms_width[k]);
+        };
+        for (unsigned int k = 0; k < b.profile.size(); ++k)
+          if (k * layout.station_spacing < middle)
+            append(b.profile, k);
+        for (unsigned int k = 0; k < a.profile.size(); ++k)
+          if (layout.overlap_begin + k * layout.cell_length >= middle)
+            append(a.profile, k);
+        return o;
+      }
+
+
+      std::string
+      HybridModel::write_snapshot(const std::string &directory,
+                                  const unsigned int index,
+                                  const double time) const
+      {
+        const std::string fe_record =
+          fe_model->write_snapshot(directory, index, time);
+        const std::string dem_record =
+          dem_model->write_snapshot(directory, index, time);
+        std::ostringstream name;
+        name << "hybrid_" << std::setw(4) << std::setfill('0') << index
+             << ".vtm";
+        collective_output(communicator, [&] {
+          if (Utilities::MPI::this_mpi_process(communicator) == 0)
+            {
+              // Both parts as one multiblock data set, so that ParaView
+              // opens them together from hybrid.pvd.
+              AtomicFile vtm(directory + "/" + name.str());
+              vtm.stream()
+                << "<?xml version=\"1.0\"?>\n"
+                << "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\">\n"
+                << "  <vtkMultiBlockDataSet>\n"
+                << "    <DataSet index=\"0\" name=\"fe\" file=\"" << fe_record
+                << "\"/>\n"
+                << "    <DataSet index=\"1\" name=\"dem\" file=\"" << dem_record
+                << "\"/>\n"
+                << "  </vtkMultiBlockDataSet>\n"
+                << "</VTKFile>\n";
+              vtm.commit();
+            }
+        });
+        return name.str();
+      }
+    } // namespace
+
+
+    std::unique_ptr<ImpactModel>
+    create_hybrid_model(const YarnImpact::Parameters::Shared &shared,
+                        const FE::Parameters &fe,
+                        const DEM::Parameters &dem,
+                        const HybridParameters &hybrid,
+                        const MPI_Comm communicator)
+    {
+      validate(shared, fe, dem, hybrid);
+      return std::make_unique<HybridModel>(shared,
+                                           fe,
+                                           dem,
+                                           hybrid,
+                                           communicator);
+    }
+  } // namespace Coupling
+} // namespace YarnImpact
