@@ -230,7 +230,7 @@ namespace YarnImpact
           std::ostringstream earlier;
           earlier << in.rdbuf();
           bool any = false;
-          for (const std::string name : {"fe", "dem"})
+          for (const std::string name : {"fe", "dem", "hybrid"})
             any =
               any || std::filesystem::exists(Checkpoint::info_file(dir, name));
           if (!in)
@@ -244,8 +244,9 @@ namespace YarnImpact
                     "same run; start a new one without --restart.";
           else if (!any)
             error = "--restart: Output/Directory = '" + dir +
-                    "' holds no checkpoint (checkpoint_fe.txt or "
-                    "checkpoint_dem.txt): the run stopped before writing one; "
+                    "' holds no checkpoint (checkpoint_fe.txt, "
+                    "checkpoint_dem.txt or checkpoint_hybrid.txt): the run "
+                    "stopped before writing one; "
                     "start it again without --restart (Output/Overwrite = "
                     "true).";
         }

@@ -209,14 +209,7 @@ namespace YarnImpact
       if (!factorized)
         throw std::logic_error(
           "BridgingConstraint::accelerations before factorize()");
-      const unsigned int n = node_mass.size();
-      // The generalised force f + N^T f_p on the nodes.
-      std::copy(node_force, node_force + 3 * n, node_acceleration);
-      for (unsigned int i = 0; i < particle_mass.size(); ++i)
-        for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
-          for (unsigned int d = 0; d < 3; ++d)
-            node_acceleration[3 * column[p] + d] +=
-              value[p] * particle_force[3 * i + d];
+      generalised_force(node_force, particle_force, node_acceleration);
       for (unsigned int d = 0; d < 3; ++d)
         solve(node_acceleration, d);
       interpolate(node_acceleration, particle_acceleration);
@@ -226,6 +219,19 @@ namespace YarnImpact
             constraint_force[3 * i + d] =
               particle_mass[i] * particle_acceleration[3 * i + d] -
               particle_force[3 * i + d];
+    }
+
+
+    void
+    BridgingConstraint::generalised_force(const double *node_force,
+                                          const double *particle_force,
+                                          double *out) const
+    {
+      std::copy(node_force, node_force + 3 * node_mass.size(), out);
+      for (unsigned int i = 0; i < particle_mass.size(); ++i)
+        for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
+          for (unsigned int d = 0; d < 3; ++d)
+            out[3 * column[p] + d] += value[p] * particle_force[3 * i + d];
     }
 
 

@@ -14,9 +14,13 @@
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 
 #include <algorithm>
 #include <cmath>
@@ -117,6 +121,147 @@ namespace YarnImpact
 
     namespace
     {
+      /**
+       * Where a point (y, z) of the section lies: the 2D section cell whose
+       * (clamped) unit coordinates are nearest, and the bilinear shape
+       * values of its four vertices there. A fibre centre outside the
+       * polygonal section (the packing ellipse can be a little larger) is
+       * tied to the nearest point of the nearest cell.
+       */
+      void
+      locate_in_section(const Triangulation<2> &section,
+                        const Point<2> &p,
+                        unsigned int &cell_index,
+                        std::array<unsigned int, 4> &vertices,
+                        std::array<double, 4> &values)
+      {
+        static const MappingQ1<2> mapping;
+        static const FE_Q<2> q1(1);
+        double best = std::numeric_limits<double>::max();
+        for (const auto &cell : section.active_cell_iterators())
+          {
+            Point<2> u;
+            try
+              {
+                u = mapping.transform_real_to_unit_cell(cell, p);
+              }
+            catch (...)
+              {
+                continue;
+              }
+            double outside = 0.;
+            for (unsigned int d = 0; d < 2; ++d)
+              outside = std::max({outside, -u[d], u[d] - 1.});
+            if (outside < best)
+              {
+                best = outside;
+                for (unsigned int d = 0; d < 2; ++d)
+                  u[d] = std::clamp(u[d], 0., 1.);
+                cell_index = cell->active_cell_index();
+                for (unsigned int v = 0; v < 4; ++v)
+                  {
+                    vertices[v] = cell->vertex_index(v);
+                    values[v]   = q1.shape_value(v, u);
+                  }
+              }
+          }
+        AssertThrow(best < std::numeric_limits<double>::max(),
+                    ExcMessage("Hybrid: a fibre centre could not be placed "
+                               "in the FE section"));
+      }
+
+
+      /**
+       * The overlap's section quadrature (doc/hybrid.md section 3.3): in
+       * each section cell, the four Gauss weights w'_q that give each of its
+       * vertices v the fibres' share of the axial stiffness,
+       * sum_q w'_q psi_v(q) = A / n_f sum_{fibres in the cell} psi_v(f),
+       * with A the ellipse's area (the FE modulus is E_f n_f A_f / A).
+       * Returned as the factor w'_q / (JxW)_q of the Gauss point at a
+       * reference position (x, y, z); throws InputError naming Hybrid/DEM
+       * half-length if a factor is not positive (too few fibres in a cell).
+       */
+      std::function<double(const double *)>
+      section_quadrature(const YarnImpact::Parameters::Shared &shared,
+                         const FE::Parameters &fe,
+                         const DEM::Parameters &dem)
+      {
+        Triangulation<2> section;
+        FE::create_yarn_section(section,
+                                shared.yarn.thickness_semi_axis,
+                                shared.yarn.width_semi_axis,
+                                fe.section_refinements,
+                                false,
+                                fe.preserve_section_area);
+        const DEM::FibreCentres centres =
+          DEM::fibre_centres(shared, dem, false);
+        const double share = shared.yarn.section_area() / centres.size();
+        std::vector<std::array<double, 4>> target(section.n_active_cells(),
+                                                  {{0., 0., 0., 0.}});
+        for (unsigned int f = 0; f < centres.size(); ++f)
+          {
+            unsigned int c;
+            std::array<unsigned int, 4> vertices;
+            std::array<double, 4> values;
+            locate_in_section(section,
+                              Point<2>(centres.y[f] * (1. + 1e-9),
+                                       centres.z[f] * (1. + 1e-9)),
+                              c,
+                              vertices,
+                              values);
+            for (unsigned int v = 0; v < 4; ++v)
+              target[c][v] += share * values[v];
+          }
+        const FE_Q<2> q1(1);
+        const QGauss<2> quadrature(2);
+        FEValues<2> values(q1,
+                           quadrature,
+                           update_values | update_JxW_values |
+                             update_quadrature_points);
+        auto points  = std::make_shared<std::vector<Point<2>>>();
+        auto factors = std::make_shared<std::vector<double>>();
+        for (const auto &cell : section.active_cell_iterators())
+          {
+            values.reinit(cell);
+            // sum_q w_q psi_v(q) = t_v: the 4 x 4 system (Psi^T w = t).
+            FullMatrix<double> psi_t(4, 4);
+            Vector<double> t(4), w(4);
+            for (unsigned int v = 0; v < 4; ++v)
+              {
+                t[v] = target[cell->active_cell_index()][v];
+                for (unsigned int q = 0; q < 4; ++q)
+                  psi_t(v, q) = values.shape_value(v, q);
+              }
+            psi_t.gauss_jordan();
+            psi_t.vmult(w, t);
+            for (unsigned int q = 0; q < 4; ++q)
+              {
+                std::ostringstream s;
+                s << "gives a section cell of the overlap a Gauss weight "
+                  << w[q] / values.JxW(q)
+                  << " times its area's: too few fibres in that cell for "
+                     "the overlap's section quadrature (refine less with "
+                     "FE/Section refinements)";
+                require(w[q] > 0., "FE/Section refinements", s.str());
+                points->push_back(values.quadrature_point(q));
+                factors->push_back(w[q] / values.JxW(q));
+              }
+          }
+        const double tol = 1e-6 * shared.yarn.thickness_semi_axis;
+        return [points, factors, tol](const double *xyz) {
+          const Point<2> p(xyz[1], xyz[2]);
+          unsigned int best = 0;
+          for (unsigned int k = 1; k < points->size(); ++k)
+            if (p.distance((*points)[k]) < p.distance((*points)[best]))
+              best = k;
+          if (!(p.distance((*points)[best]) < tol))
+            throw std::logic_error("Hybrid: a Gauss point of the overlap is "
+                                   "not one of the section's");
+          return (*factors)[best];
+        };
+      }
+
+
       /** The DEM part: the yarn |x| <= a, with the weights of @p l. */
       void
       dem_part(const YarnImpact::Parameters::Shared &shared,
@@ -197,6 +342,8 @@ namespace YarnImpact
       fe_part(shared, fe, l, fe_shared, fe_p);
       FE::validate(fe_shared, fe_p);
       DEM::validate(dem_shared, dem_p);
+      // The overlap's section quadrature must exist (positive weights).
+      section_quadrature(shared, fe, dem);
     }
 
 
@@ -222,54 +369,6 @@ namespace YarnImpact
     namespace
     {
       /**
-       * Where a point (y, z) of the section lies: the 2D section cell whose
-       * (clamped) unit coordinates are nearest, and the bilinear shape
-       * values of its four vertices there. A fibre centre outside the
-       * polygonal section (the packing ellipse can be a little larger) is
-       * tied to the nearest point of the nearest cell.
-       */
-      void
-      locate_in_section(const Triangulation<2> &section,
-                        const Point<2> &p,
-                        std::array<unsigned int, 4> &vertices,
-                        std::array<double, 4> &values)
-      {
-        static const MappingQ1<2> mapping;
-        static const FE_Q<2> q1(1);
-        double best = std::numeric_limits<double>::max();
-        for (const auto &cell : section.active_cell_iterators())
-          {
-            Point<2> u;
-            try
-              {
-                u = mapping.transform_real_to_unit_cell(cell, p);
-              }
-            catch (...)
-              {
-                continue;
-              }
-            double outside = 0.;
-            for (unsigned int d = 0; d < 2; ++d)
-              outside = std::max({outside, -u[d], u[d] - 1.});
-            if (outside < best)
-              {
-                best = outside;
-                for (unsigned int d = 0; d < 2; ++d)
-                  u[d] = std::clamp(u[d], 0., 1.);
-                for (unsigned int v = 0; v < 4; ++v)
-                  {
-                    vertices[v] = cell->vertex_index(v);
-                    values[v]   = q1.shape_value(v, u);
-                  }
-              }
-          }
-        AssertThrow(best < std::numeric_limits<double>::max(),
-                    ExcMessage("Hybrid: a fibre centre could not be placed "
-                               "in the FE section"));
-      }
-
-
-      /**
        * The hybrid yarn: the two parts, and the coupling applied after
        * both have computed their forces (doc/hybrid.md section 3).
        */
@@ -290,6 +389,7 @@ namespace YarnImpact
           FE::Parameters fe_p;
           dem_part(shared, dem, layout, dem_shared, dem_p);
           fe_part(shared, fe, layout, fe_shared, fe_p);
+          fe_p.section_quadrature_factor = section_quadrature(shared, fe, dem);
           fe_model  = FE::create_model(fe_shared, fe_p, communicator);
           dem_model = DEM::create_model(dem_shared, dem_p, communicator);
         }
@@ -399,6 +499,10 @@ namespace YarnImpact
           return s.str();
         }
 
+        /** See Coupling::patch_test(). */
+        double
+        patch_test(const double strain);
+
       private:
         /** Replace the forces of the overlap's nodes and spheres by those
          * that give each the coupled acceleration (BridgingConstraint). */
@@ -500,10 +604,14 @@ namespace YarnImpact
         std::vector<std::array<unsigned int, 4>> fibre_vertices(n_fibres);
         std::vector<std::array<double, 4>> fibre_values(n_fibres);
         for (unsigned int f = 0; f < n_fibres; ++f)
-          locate_in_section(section,
-                            Point<2>((*dem.fibre_y)[f], (*dem.fibre_z)[f]),
-                            fibre_vertices[f],
-                            fibre_values[f]);
+          {
+            unsigned int cell;
+            locate_in_section(section,
+                              Point<2>((*dem.fibre_y)[f], (*dem.fibre_z)[f]),
+                              cell,
+                              fibre_vertices[f],
+                              fibre_values[f]);
+          }
         for (unsigned int s = layout.first_coupled_station;
              s <= layout.dem_trusses;
              ++s)
@@ -618,6 +726,68 @@ namespace YarnImpact
       }
 
 
+      double
+      HybridModel::patch_test(const double strain)
+      {
+        {
+          const FE::CouplingView fe = FE::coupling_view(*fe_model);
+          for (const auto &node : *fe.nodes)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                fe.displacement[node[d]] =
+                  d == 0 ? strain * (*fe.reference_coordinate)[node[0]] : 0.;
+                fe.velocity[node[d]] = 0.;
+              }
+          const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
+          for (unsigned int s = dem.station_begin; s < dem.station_end; ++s)
+            for (unsigned int f = 0; f < dem.n_fibres; ++f)
+              {
+                const std::size_t i     = dem.local_index(s, f);
+                dem.position[3 * i]     = (1. + strain) * (*dem.station_x)[s];
+                dem.velocity[3 * i]     = 0.;
+                dem.velocity[3 * i + 1] = dem.velocity[3 * i + 2] = 0.;
+              }
+        }
+        Projectile far(shared.projectile, shared.yarn.thickness_semi_axis);
+        far.place_on(1.);
+        // The models' own forces, then the generalised ones of the coupled
+        // system (couple() replaces the overlap's).
+        fe_model->compute_forces(far, 0.);
+        dem_model->compute_forces(far, 0.);
+        const FE::CouplingView fe   = FE::coupling_view(*fe_model);
+        const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
+        double largest              = 0.;
+        std::vector<bool> coupled(fe.reference_coordinate->size(), false);
+        for (const auto &[c, dofs] : owned_nodes)
+          for (unsigned int d = 0; d < 3; ++d)
+            coupled[dofs[d]] = true;
+        for (const auto &node : *fe.nodes)
+          for (unsigned int d = 0; d < 3; ++d)
+            if (!coupled[node[d]] && fe.inverse_mass[node[d]] != 0.)
+              largest = std::max(largest, std::abs(fe.force[node[d]]));
+        for (unsigned int s = dem.station_begin;
+             s < std::min(dem.station_end, layout.first_coupled_station);
+             ++s)
+          for (unsigned int f = 0; f < dem.n_fibres; ++f)
+            for (unsigned int d = (s == 0 ? 1 : 0); d < 3; ++d)
+              largest =
+                std::max(largest,
+                         std::abs(dem.force[3 * dem.local_index(s, f) + d]));
+        couple(0.);
+        std::vector<double> generalised(node_force.size());
+        constraint.generalised_force(node_force.data(),
+                                     particle_force.data(),
+                                     generalised.data());
+        for (const double g : generalised)
+          largest = std::max(largest, std::abs(g));
+        largest              = Utilities::MPI::max(largest, communicator);
+        const double tension = shared.yarn.fibre_modulus * M_PI * 0.25 *
+                               shared.yarn.fibre_diameter *
+                               shared.yarn.fibre_diameter * strain;
+        return largest / tension;
+      }
+
+
       Observables
       HybridModel::observables() const
       {
@@ -701,6 +871,24 @@ namespace YarnImpact
         return name.str();
       }
     } // namespace
+
+
+    double
+    patch_test(const YarnImpact::Parameters::Shared &shared,
+               const FE::Parameters &fe,
+               const DEM::Parameters &dem,
+               const HybridParameters &hybrid,
+               const double strain,
+               const MPI_Comm communicator)
+    {
+      validate(shared, fe, dem, hybrid);
+      HybridModel model(shared, fe, dem, hybrid, communicator);
+      std::ostringstream quiet;
+      Projectile far(shared.projectile, shared.yarn.thickness_semi_axis);
+      far.place_on(1.);
+      model.setup(far, quiet);
+      return model.patch_test(strain);
+    }
 
 
     std::unique_ptr<ImpactModel>

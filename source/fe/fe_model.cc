@@ -110,7 +110,7 @@ namespace YarnImpact
       FEValues<3> fe_values(scalar_fe,
                             quadrature,
                             update_values | update_gradients |
-                              update_JxW_values);
+                              update_JxW_values | update_quadrature_points);
       QGauss<2> face_quadrature(2);
       FEFaceValues<3> fe_face_values(scalar_fe,
                                      face_quadrature,
@@ -184,8 +184,18 @@ namespace YarnImpact
                   for (unsigned int d = 0; d < 3; ++d)
                     cells.grads[offset + gradient_index(q, a, d)] =
                       fe_values.shape_grad(a, q)[d];
-                cells.JxW.push_back(part ? weight * fe_values.JxW(q)
-                                         : fe_values.JxW(q));
+                double jxw = fe_values.JxW(q);
+                if (part)
+                  {
+                    jxw *= weight;
+                    if (parameters.section_quadrature_factor)
+                      {
+                        const Point<3> &p   = fe_values.quadrature_point(q);
+                        const double xyz[3] = {p[0], p[1], p[2]};
+                        jxw *= parameters.section_quadrature_factor(xyz);
+                      }
+                  }
+                cells.JxW.push_back(jxw);
               }
           }
           // The local axis along the fibre: the one whose opposite faces

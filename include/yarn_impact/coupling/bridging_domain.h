@@ -195,6 +195,15 @@ namespace YarnImpact
                     double *particle_acceleration,
                     double *constraint_force = nullptr) const;
 
+      /** The generalised force of the coupled system on the nodes,
+       * @p node_force + N^T @p particle_force (3 per node, 3 per particle)
+       * into @p out (3 per node) [N]: what moves the nodes; zero for a
+       * state in equilibrium. */
+      void
+      generalised_force(const double *node_force,
+                        const double *particle_force,
+                        double *out) const;
+
       /** The nodal field @p node_values (3 per node) interpolated at the
        * particles: @p particle_values = N node_values (3 per particle). */
       void

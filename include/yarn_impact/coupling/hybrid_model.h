@@ -98,6 +98,23 @@ namespace YarnImpact
      * (BridgingConstraint): weights per FE cell layer, the overlap's
      * spheres moving with the continuum.
      */
+    /**
+     * The patch test of the coupling (doc/hybrid.md section 4): the hybrid
+     * yarn of these parameters at rest under the uniform axial stretch
+     * x -> (1 + @p strain) x of both parts, the projectile far away. Returns
+     * the largest force on a degree of freedom of the coupled system (a
+     * free sphere, an FE node outside the overlap, or an overlap node with
+     * the forces of its spheres through N^T), over one fibre's tension
+     * E_f A_f @p strain [-]: 0 without ghost forces. Collective.
+     */
+    double
+    patch_test(const YarnImpact::Parameters::Shared &shared,
+               const FE::Parameters &fe,
+               const DEM::Parameters &dem,
+               const HybridParameters &hybrid,
+               const double strain,
+               const MPI_Comm communicator);
+
     std::unique_ptr<ImpactModel>
     create_hybrid_model(const YarnImpact::Parameters::Shared &shared,
                         const FE::Parameters &fe,

@@ -3,6 +3,7 @@
 
 #include <yarn_impact/contact/contact_law.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,12 @@ namespace YarnImpact
        */
       double part_begin = 0.;
       std::vector<double> layer_weight;
+      /** Also set by a coupling: in every cell of the part, each Gauss
+       * point's weight is multiplied by this factor of its reference
+       * position (x, y, z) [m], so that the section's quadrature gives each
+       * node the fibres' share of the axial stiffness (doc/hybrid.md
+       * section 3.3). Empty: 1. */
+      std::function<double(const double *)> section_quadrature_factor;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
