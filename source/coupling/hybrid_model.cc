@@ -6,6 +6,7 @@
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/core/projectile.h>
+#include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/coupling/bridging_domain.h>
 #include <yarn_impact/coupling/hybrid_model.h>
 #include <yarn_impact/dem/dem_model.h>
@@ -534,7 +535,7 @@ namespace YarnImpact
          * power, summed), in the modelled part [J]. */
         double coupling_work = 0.;
         std::vector<double> node_force, particle_force, node_acceleration,
-          particle_acceleration, multipliers, particle_velocity;
+          particle_acceleration, multipliers;
       };
 
 
@@ -650,7 +651,6 @@ namespace YarnImpact
         particle_force.assign(3 * n_p, 0.);
         particle_acceleration.assign(3 * n_p, 0.);
         multipliers.assign(3 * n_p, 0.);
-        particle_velocity.assign(3 * n_p, 0.);
         // The initial forces, as every step leaves them.
         couple(0.);
 
@@ -674,7 +674,6 @@ namespace YarnImpact
         const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
         std::fill(node_force.begin(), node_force.end(), 0.);
         std::fill(particle_force.begin(), particle_force.end(), 0.);
-        std::fill(particle_velocity.begin(), particle_velocity.end(), 0.);
         // Gather: each entry has one owner and the others add zeros, so the
         // sums are exact and the same on every rank and partition.
         for (const auto &[c, dofs] : owned_nodes)
@@ -690,24 +689,28 @@ namespace YarnImpact
               const std::size_t i = dem.local_index(s, f);
               const std::size_t p = std::size_t(s - first) * n_fibres + f;
               for (unsigned int d = 0; d < 3; ++d)
-                {
-                  particle_force[3 * p + d]    = dem.force[3 * i + d];
-                  particle_velocity[3 * p + d] = dem.velocity[3 * i + d];
-                }
+                particle_force[3 * p + d] = dem.force[3 * i + d];
             }
         Utilities::MPI::sum(node_force, communicator, node_force);
         Utilities::MPI::sum(particle_force, communicator, particle_force);
-        Utilities::MPI::sum(particle_velocity, communicator, particle_velocity);
 
         constraint.accelerations(node_force.data(),
                                  particle_force.data(),
                                  node_acceleration.data(),
                                  particle_acceleration.data(),
                                  multipliers.data());
-        double power = 0.;
-        for (unsigned int k = 0; k < multipliers.size(); ++k)
-          power += multipliers[k] * particle_velocity[k];
-        coupling_work += dt * power;
+        // The multipliers' power on the spheres this rank owns, summed over
+        // the ranks independently of the partition.
+        ReproducibleSum power(1);
+        for (unsigned int s = s_begin; s < s_end; ++s)
+          for (unsigned int f = 0; f < n_fibres; ++f)
+            {
+              const std::size_t i = dem.local_index(s, f);
+              const std::size_t p = std::size_t(s - first) * n_fibres + f;
+              for (unsigned int d = 0; d < 3; ++d)
+                power.add(0, multipliers[3 * p + d] * dem.velocity[3 * i + d]);
+            }
+        coupling_work += dt * power.sum(communicator)[0];
 
         // Scatter: the force that gives each its coupled acceleration
         // through its own kick.

@@ -7,8 +7,10 @@
 #   6.2415e5 against 6.0476e5 m/s^2, doc/hybrid.md section 4.3), and the
 #   largest energy balance error, coupling included, at most 0.05 % of the
 #   initial energy;
-# - the same history, byte for byte, on 1, 2 and 3 MPI ranks (3 is more
-#   than a 2-core machine has: oversubscribed);
+# - the same history on 1, 2 and 3 MPI ranks (3 is more than a 2-core
+#   machine has: oversubscribed): byte for byte but the energy columns,
+#   which the DEM part sums rank by rank as Model = dem does (within 1e-9
+#   of the initial energy; the motion is the same to the last bit);
 # - stopped by SIGTERM at a history row and continued with --restart: the
 #   same history as the uninterrupted run, byte for byte;
 # - bad Hybrid set-ups refused by --check with one line naming the
@@ -35,6 +37,29 @@ hybrid_prm() {
   printf '  set Energy tolerance = 5e-4\n  set Tolerance = 0.04\nend\n'
 }
 
+# same_history A B: every column byte for byte but the energy balance's,
+# which the DEM part sums per rank (as Model = dem does): those within
+# 1e-9 of the initial energy.
+same_history() {
+  /usr/bin/python3 - "$1" "$2" << 'END'
+import csv, sys
+a, b = (list(csv.reader(open(p))) for p in sys.argv[1:3])
+if len(a) != len(b) or a[0] != b[0]:
+    sys.exit(1)
+h = a[0]
+energy = [k for k, n in enumerate(h) if "energy" in n or "external work" in n]
+scale = float(a[1][h.index("projectile kinetic energy [mJ]")])
+for x, y in zip(a[1:], b[1:]):
+    for k in range(len(h)):
+        if x[k] == y[k]:
+            continue
+        bound = 1e-9 * (100. if "[%]" in h[k] else scale)
+        if k not in energy or abs(float(x[k]) - float(y[k])) > bound:
+            print(f"t = {x[0]} us, {h[k]}: {x[k]} against {y[k]}")
+            sys.exit(1)
+END
+}
+
 for n in 1 2 3; do
   hybrid_prm "ranks$n" > "ranks$n.prm"
   mpirun -np "$n" "$exe" "ranks$n.prm" > "ranks$n.stdout" 2>&1
@@ -44,7 +69,7 @@ for n in 1 2 3; do
     tail -25 "ranks$n.stdout"
     continue
   fi
-  if [ "$n" -gt 1 ] && ! cmp -s ranks1/history_hybrid.csv "ranks$n/history_hybrid.csv"; then
+  if [ "$n" -gt 1 ] && ! same_history ranks1/history_hybrid.csv "ranks$n/history_hybrid.csv"; then
     fail "$n ranks: history_hybrid.csv differs from 1 rank's"
   fi
 done
