@@ -395,8 +395,7 @@ namespace YarnImpact
       TimerOutput::Scope scope(timer, "checkpoint");
       const double t = schedule.time();
       if (p.output.checkpoint_interval > 0.)
-        while (next_checkpoint <= t + eps_t)
-          next_checkpoint += p.output.checkpoint_interval;
+        advance_past(next_checkpoint, p.output.checkpoint_interval, t, eps_t);
       checkpoint_info = Checkpoint::write(
         dir,
         name,

@@ -5,6 +5,8 @@
 #include <yarn_impact/core/parameters.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace dealii
 {
@@ -13,6 +15,33 @@ namespace dealii
 
 namespace YarnImpact
 {
+  /**
+   * Move an output time @p next [s] that is due (next <= t + eps) to the
+   * first multiple of @p interval [s] after it that lies beyond @p t + @p
+   * eps [s]. An interval far below the step (or below the round-off of
+   * @p next, where next + interval == next) would make that a loop of
+   * billions of turns or an endless one: after 64 turns @p next jumps to
+   * just past t + eps, so that the output is due again at the next step,
+   * as it would be on the grid.
+   */
+  inline void
+  advance_past(double &next,
+               const double interval,
+               const double t,
+               const double eps)
+  {
+    for (unsigned int turns = 0; next <= t + eps; ++turns)
+      {
+        if (turns == 64)
+          {
+            next =
+              std::nextafter(t + eps, std::numeric_limits<double>::infinity());
+            return;
+          }
+        next += interval;
+      }
+  }
+
   class ImpactModel;
   class Projectile;
 
@@ -167,8 +196,7 @@ namespace YarnImpact
     void
     history_written()
     {
-      while (next_history <= t + eps)
-        next_history += output.history_interval;
+      advance_past(next_history, output.history_interval, t, eps);
     }
 
     /** A snapshot was written now: the next one is due at the first
@@ -176,8 +204,7 @@ namespace YarnImpact
     void
     snapshot_written()
     {
-      while (next_snapshot <= t + eps)
-        next_snapshot += output.snapshot_interval;
+      advance_past(next_snapshot, output.snapshot_interval, t, eps);
     }
 
     /** Write the clock (time, step, time step, next output times) to a
