@@ -132,9 +132,9 @@ if mount -t tmpfs -o size=100k tmpfs tmpfs 2> /dev/null; then
   "$exe" t.prm > stdout 2> stderr
   rc=$?
   # Whichever file the disk runs out in (a snapshot piece or the PVD
-  # record after it, depending on the file system's block accounting), the
-  # run must stop with its line naming that file and leave nothing
-  # half-written.
+  # record after it: it moves with the size of what was written before,
+  # parameters.prm growing with every new parameter), the run must stop
+  # with its line naming that file and leave nothing half-written.
   check "FE on a full 100 kB tmpfs" tmpfs/out "(vtu|pvd)"
   umount tmpfs
 else
