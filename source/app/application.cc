@@ -270,39 +270,6 @@ namespace YarnImpact
             fs::remove(it->path(), ec);
         }
     }
-
-    /**
-     * The memory guard: refuse a set-up that would not fit in this
-     * machine's memory, naming the parameter that makes it large, before
-     * anything is allocated; the estimates are printed at set-up.
-     */
-    void
-    check_memory_of_models(const AllParameters &p,
-                           const bool print,
-                           std::ostream &out)
-    {
-      if (p.elementary.loading != DEM::ElementaryLoading::none)
-        return;
-      const auto model = p.model;
-      std::vector<std::string> lines;
-      if (model == ModelType::hybrid)
-        lines.push_back(check_memory(
-          Coupling::memory_estimate(p.shared, p.fe, p.dem, p.hybrid),
-          "hybrid",
-          MPI_COMM_WORLD));
-      else if (model != ModelType::dem)
-        lines.push_back(check_memory(FE::memory_estimate(p.shared, p.fe),
-                                     "fe",
-                                     MPI_COMM_WORLD));
-      if (model != ModelType::fe && model != ModelType::hybrid)
-        lines.push_back(check_memory(DEM::memory_estimate(p.shared, p.dem),
-                                     "dem",
-                                     MPI_COMM_WORLD));
-      if (print && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-        for (const auto &line : lines)
-          out << line << '\n';
-    }
-
   } // namespace
 
 

@@ -4,7 +4,12 @@
 #include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/fe/fe_model.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
+
+#include <ostream>
+#include <string>
+#include <vector>
 
 namespace YarnImpact
 {
@@ -48,5 +53,33 @@ namespace YarnImpact
                                            p.hybrid,
                                            communicator);
     return FE::create_model(p.shared, p.fe, communicator);
+  }
+
+
+  void
+  check_memory_of_models(const AllParameters &p,
+                         const bool print,
+                         std::ostream &out)
+  {
+    if (p.elementary.loading != DEM::ElementaryLoading::none)
+      return;
+    const auto model = p.model;
+    std::vector<std::string> lines;
+    if (model == ModelType::hybrid)
+      lines.push_back(
+        check_memory(Coupling::memory_estimate(p.shared, p.fe, p.dem, p.hybrid),
+                     "hybrid",
+                     MPI_COMM_WORLD));
+    else if (model != ModelType::dem)
+      lines.push_back(check_memory(FE::memory_estimate(p.shared, p.fe),
+                                   "fe",
+                                   MPI_COMM_WORLD));
+    if (model != ModelType::fe && model != ModelType::hybrid)
+      lines.push_back(check_memory(DEM::memory_estimate(p.shared, p.dem),
+                                   "dem",
+                                   MPI_COMM_WORLD));
+    if (print && dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      for (const auto &line : lines)
+        out << line << '\n';
   }
 } // namespace YarnImpact

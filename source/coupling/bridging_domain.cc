@@ -9,63 +9,6 @@ namespace YarnImpact
 {
   namespace Coupling
   {
-    OverlapWeight::OverlapWeight(const double particle_half_length,
-                                 const double overlap_width)
-      : a(particle_half_length)
-      , w(overlap_width)
-    {
-      if (!(w > 0.) || !(w <= a))
-        throw std::invalid_argument(
-          "OverlapWeight: the overlap width must be in (0, a]");
-    }
-
-
-    double
-    OverlapWeight::particle(const double x) const
-    {
-      const double r = std::abs(x);
-      if (r <= a - w)
-        return 1.;
-      if (r >= a)
-        return 0.;
-      return (a - r) / w;
-    }
-
-
-    double
-    OverlapWeight::integral(const double x) const
-    {
-      // Integral over [0, r] of the weight, r = |x|: the plateau, then the
-      // ramp's trapezoid.
-      const double r = std::abs(x), r0 = a - w;
-      if (r <= r0)
-        return r;
-      const double s = std::min(r, a) - r0;
-      return r0 + s - 0.5 * s * s / w;
-    }
-
-
-    double
-    OverlapWeight::mean_particle(const double x0, const double x1) const
-    {
-      if (x0 == x1)
-        return particle(x0);
-      // The weight is even in x: integrate each side of 0 on its own.
-      auto signed_integral = [this](const double x) {
-        return x < 0. ? -integral(x) : integral(x);
-      };
-      return (signed_integral(x1) - signed_integral(x0)) / (x1 - x0);
-    }
-
-
-    bool
-    OverlapWeight::in_overlap(const double x) const
-    {
-      const double r = std::abs(x);
-      return r >= a - w && r <= a;
-    }
-
-
     BridgingConstraint::BridgingConstraint(const unsigned int n_nodes)
       : node_mass(n_nodes, 0.)
       , row_start(1, 0)

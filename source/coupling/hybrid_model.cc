@@ -1,32 +1,25 @@
 // The hybrid yarn (doc/hybrid.md): the DEM fibres where the yarn wraps the
 // nose and breaks, the FE continuum elsewhere, coupled in an overlap by the
-// bridging domain method. The one place that knows both models.
+// bridging domain method: the model, its step and its outputs. Its
+// parameters and parts are in hybrid_parameters.cc, the FE part's section
+// quadrature in section_quadrature.cc.
 
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/output_file.h>
-#include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/core/projectile.h>
-#include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/coupling/bridging_domain.h>
 #include <yarn_impact/coupling/hybrid_model.h>
+#include <yarn_impact/coupling/hybrid_parts.h>
 #include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/fe/fe_model.h>
 #include <yarn_impact/fe/yarn_mesh.h>
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/parameter_handler.h>
-#include <deal.II/base/quadrature_lib.h>
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/tria.h>
-#include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/vector.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <limits>
 #include <ostream>
 #include <sstream>
 
@@ -35,336 +28,6 @@ namespace YarnImpact
   namespace Coupling
   {
     using namespace dealii;
-    using YarnImpact::Parameters::require;
-
-
-    void
-    HybridParameters::declare_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Hybrid");
-      prm.declare_entry(
-        "DEM half-length",
-        "3e-3",
-        Patterns::Double(),
-        "Model = hybrid: the DEM fibres model |x| <= a, this half-length, "
-        "rounded to whole FE cells from the clamp; it must hold the "
-        "projectile's contact zone and every fibre break (the run stops, "
-        "naming this parameter, when the FE part's fibre strain comes within "
-        "10 % of Yarn/Failure strain) [m].");
-      prm.declare_entry(
-        "Overlap width",
-        "1e-3",
-        Patterns::Double(),
-        "Model = hybrid: width w of the overlap a - w <= |x| <= a where both "
-        "models exist and their weights go from the DEM's to the FE's, "
-        "rounded to whole FE cells (at least one) [m].");
-      prm.leave_subsection();
-    }
-
-
-    void
-    HybridParameters::parse_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Hybrid");
-      dem_half_length =
-        YarnImpact::Parameters::get_positive_double(prm,
-                                                    "Hybrid",
-                                                    "DEM half-length");
-      overlap_width =
-        YarnImpact::Parameters::get_positive_double(prm,
-                                                    "Hybrid",
-                                                    "Overlap width");
-      prm.leave_subsection();
-    }
-
-
-    HybridLayout
-    hybrid_layout(const YarnImpact::Parameters::Shared &shared,
-                  const FE::Parameters &fe,
-                  const DEM::Parameters &dem,
-                  const HybridParameters &hybrid)
-    {
-      const double half = 0.5 * shared.yarn.length;
-      HybridLayout l;
-      // The DEM's trusses as FibreChains lays them on the whole yarn: L/2
-      // in K equal trusses.
-      const unsigned int K =
-        static_cast<unsigned int>(std::ceil(half / dem.sphere_spacing - 1e-9));
-      l.station_spacing = half / K;
-      // FE cells of about the FE model's own length, whole trusses each.
-      const double nominal = shared.yarn.length / fe.n_axial_cells;
-      l.cell_trusses =
-        std::max<long>(1, std::lround(nominal / l.station_spacing));
-      l.cell_length = l.cell_trusses * l.station_spacing;
-      l.overlap_cells =
-        std::max<long>(1, std::lround(hybrid.overlap_width / l.cell_length));
-      const long fe_only =
-        std::lround((half - hybrid.dem_half_length) / l.cell_length);
-      require(fe_only >= 1,
-              "Hybrid/DEM half-length",
-              "must leave at least one FE cell of " +
-                std::to_string(l.cell_length * 1e3) +
-                " mm between the DEM part and the clamp");
-      require(static_cast<long>(K) - fe_only * long(l.cell_trusses) >
-                long(l.overlap_cells * l.cell_trusses),
-              "Hybrid/Overlap width",
-              "must be smaller than Hybrid/DEM half-length (after rounding "
-              "both to whole FE cells)");
-      l.fe_cells        = fe_only + l.overlap_cells;
-      l.dem_trusses     = K - fe_only * l.cell_trusses;
-      l.dem_half_length = l.dem_trusses * l.station_spacing;
-      l.first_coupled_station =
-        l.dem_trusses - l.overlap_cells * l.cell_trusses;
-      l.overlap_begin = l.first_coupled_station * l.station_spacing;
-      return l;
-    }
-
-
-    namespace
-    {
-      /**
-       * Where a point (y, z) of the section lies: the 2D section cell whose
-       * (clamped) unit coordinates are nearest, and the bilinear shape
-       * values of its four vertices there. A fibre centre outside the
-       * polygonal section (the packing ellipse can be a little larger) is
-       * tied to the nearest point of the nearest cell.
-       */
-      void
-      locate_in_section(const Triangulation<2> &section,
-                        const Point<2> &p,
-                        unsigned int &cell_index,
-                        std::array<unsigned int, 4> &vertices,
-                        std::array<double, 4> &values)
-      {
-        static const MappingQ1<2> mapping;
-        static const FE_Q<2> q1(1);
-        double best = std::numeric_limits<double>::max();
-        for (const auto &cell : section.active_cell_iterators())
-          {
-            Point<2> u;
-            try
-              {
-                u = mapping.transform_real_to_unit_cell(cell, p);
-              }
-            catch (...)
-              {
-                continue;
-              }
-            double outside = 0.;
-            for (unsigned int d = 0; d < 2; ++d)
-              outside = std::max({outside, -u[d], u[d] - 1.});
-            if (outside < best)
-              {
-                best = outside;
-                for (unsigned int d = 0; d < 2; ++d)
-                  u[d] = std::clamp(u[d], 0., 1.);
-                cell_index = cell->active_cell_index();
-                for (unsigned int v = 0; v < 4; ++v)
-                  {
-                    vertices[v] = cell->vertex_index(v);
-                    values[v]   = q1.shape_value(v, u);
-                  }
-              }
-          }
-        AssertThrow(best < std::numeric_limits<double>::max(),
-                    ExcMessage("Hybrid: a fibre centre could not be placed "
-                               "in the FE section"));
-      }
-
-
-      /**
-       * The overlap's section quadrature (doc/hybrid.md section 3.3): in
-       * each section cell, the four Gauss weights w'_q that give each of its
-       * vertices v the fibres' share of the axial stiffness,
-       * sum_q w'_q psi_v(q) = A / n_f sum_{fibres in the cell} psi_v(f),
-       * with A the ellipse's area (the FE modulus is E_f n_f A_f / A).
-       * Returned as the factor w'_q / (JxW)_q of the Gauss point at a
-       * reference position (x, y, z); throws InputError naming Hybrid/DEM
-       * half-length if a factor is not positive (too few fibres in a cell).
-       */
-      std::function<double(const double *)>
-      section_quadrature(const YarnImpact::Parameters::Shared &shared,
-                         const FE::Parameters &fe,
-                         const DEM::Parameters &dem)
-      {
-        Triangulation<2> section;
-        FE::create_yarn_section(section,
-                                shared.yarn.thickness_semi_axis,
-                                shared.yarn.width_semi_axis,
-                                fe.section_refinements,
-                                false,
-                                fe.preserve_section_area);
-        const DEM::FibreCentres centres =
-          DEM::fibre_centres(shared, dem, false);
-        const double share = shared.yarn.section_area() / centres.size();
-        std::vector<std::array<double, 4>> target(section.n_active_cells(),
-                                                  {{0., 0., 0., 0.}});
-        for (unsigned int f = 0; f < centres.size(); ++f)
-          {
-            unsigned int c;
-            std::array<unsigned int, 4> vertices;
-            std::array<double, 4> values;
-            locate_in_section(section,
-                              Point<2>(centres.y[f] * (1. + 1e-9),
-                                       centres.z[f] * (1. + 1e-9)),
-                              c,
-                              vertices,
-                              values);
-            for (unsigned int v = 0; v < 4; ++v)
-              target[c][v] += share * values[v];
-          }
-        const FE_Q<2> q1(1);
-        const QGauss<2> quadrature(2);
-        FEValues<2> values(q1,
-                           quadrature,
-                           update_values | update_JxW_values |
-                             update_quadrature_points);
-        auto points  = std::make_shared<std::vector<Point<2>>>();
-        auto factors = std::make_shared<std::vector<double>>();
-        for (const auto &cell : section.active_cell_iterators())
-          {
-            values.reinit(cell);
-            // sum_q w_q psi_v(q) = t_v: the 4 x 4 system (Psi^T w = t).
-            FullMatrix<double> psi_t(4, 4);
-            Vector<double> t(4), w(4);
-            for (unsigned int v = 0; v < 4; ++v)
-              {
-                t[v] = target[cell->active_cell_index()][v];
-                for (unsigned int q = 0; q < 4; ++q)
-                  psi_t(v, q) = values.shape_value(v, q);
-              }
-            psi_t.gauss_jordan();
-            psi_t.vmult(w, t);
-            for (unsigned int q = 0; q < 4; ++q)
-              {
-                std::ostringstream s;
-                s << "gives a section cell of the overlap a Gauss weight "
-                  << w[q] / values.JxW(q)
-                  << " times its area's: too few fibres in that cell for "
-                     "the overlap's section quadrature (refine less with "
-                     "FE/Section refinements)";
-                require(w[q] > 0., "FE/Section refinements", s.str());
-                points->push_back(values.quadrature_point(q));
-                factors->push_back(w[q] / values.JxW(q));
-              }
-          }
-        const double tol = 1e-6 * shared.yarn.thickness_semi_axis;
-        return [points, factors, tol](const double *xyz) {
-          const Point<2> p(xyz[1], xyz[2]);
-          unsigned int best = 0;
-          for (unsigned int k = 1; k < points->size(); ++k)
-            if (p.distance((*points)[k]) < p.distance((*points)[best]))
-              best = k;
-          if (!(p.distance((*points)[best]) < tol))
-            throw std::logic_error("Hybrid: a Gauss point of the overlap is "
-                                   "not one of the section's");
-          return (*factors)[best];
-        };
-      }
-
-
-      /** The DEM part: the yarn |x| <= a, with the weights of @p l. */
-      void
-      dem_part(const YarnImpact::Parameters::Shared &shared,
-               const DEM::Parameters &dem,
-               const HybridLayout &l,
-               YarnImpact::Parameters::Shared &part_shared,
-               DEM::Parameters &part)
-      {
-        part_shared             = shared;
-        part_shared.yarn.length = 2. * l.dem_half_length;
-        part                    = dem;
-        part.sphere_spacing     = l.station_spacing;
-        part.truss_weight.assign(l.dem_trusses, 1.);
-        for (unsigned int s = l.first_coupled_station; s < l.dem_trusses; ++s)
-          part.truss_weight[s] =
-            l.particle_weight((s - l.first_coupled_station) / l.cell_trusses);
-        // A station's weight is the mean of its two trusses' (the end's
-        // outer side is the FE's alone).
-        part.station_weight.assign(l.dem_trusses + 1, 1.);
-        for (unsigned int s = 1; s <= l.dem_trusses; ++s)
-          part.station_weight[s] =
-            0.5 * (part.truss_weight[s - 1] +
-                   (s < l.dem_trusses ? part.truss_weight[s] : 0.));
-      }
-
-
-      /** The FE part: x in [a - w, L/2], the DEM's yarn, no failure. */
-      void
-      fe_part(const YarnImpact::Parameters::Shared &shared,
-              const FE::Parameters &fe,
-              const HybridLayout &l,
-              YarnImpact::Parameters::Shared &part_shared,
-              FE::Parameters &part)
-      {
-        part_shared              = shared;
-        part_shared.yarn.failure = false;
-        part                     = fe;
-        // The same yarn on both sides (doc/hybrid.md section 3.2).
-        part.density_from_fibres       = true;
-        part.axial_modulus_from_fibres = true;
-        part.part_begin                = l.overlap_begin;
-        part.layer_weight.assign(l.fe_cells, 1.);
-        for (unsigned int k = 0; k < l.overlap_cells; ++k)
-          part.layer_weight[k] = 1. - l.particle_weight(k);
-      }
-    } // namespace
-
-
-    void
-    validate(const YarnImpact::Parameters::Shared &shared,
-             const FE::Parameters &fe,
-             const DEM::Parameters &dem,
-             const HybridParameters &hybrid)
-    {
-      require(shared.general.symmetry == YarnImpact::Parameters::Symmetry::half,
-              "Symmetry",
-              "must be half for Model = hybrid (the coupled overlap is built "
-              "on x >= 0 without the plane z = 0)");
-      require(fe.global_refinements == 0,
-              "FE/Global refinements",
-              "must be 0 for Model = hybrid (the overlap's weights are per "
-              "cell layer; refine with FE/Cells along the axis)");
-      const HybridLayout l = hybrid_layout(shared, fe, dem, hybrid);
-      std::ostringstream zone;
-      zone << "leaves the DEM-only zone |x| < " << l.overlap_begin * 1e3
-           << " mm (after rounding to whole FE cells) no wider than the "
-              "projectile's contact zone, its radius "
-           << 0.5 * shared.projectile.diameter * 1e3
-           << " mm: raise it or narrow Hybrid/Overlap width";
-      require(l.overlap_begin >
-                0.5 * shared.projectile.diameter + shared.yarn.fibre_diameter,
-              "Hybrid/DEM half-length",
-              zone.str());
-      YarnImpact::Parameters::Shared dem_shared, fe_shared;
-      DEM::Parameters dem_p;
-      FE::Parameters fe_p;
-      dem_part(shared, dem, l, dem_shared, dem_p);
-      fe_part(shared, fe, l, fe_shared, fe_p);
-      FE::validate(fe_shared, fe_p);
-      DEM::validate(dem_shared, dem_p);
-      // The overlap's section quadrature must exist (positive weights).
-      section_quadrature(shared, fe, dem);
-    }
-
-
-    MemoryEstimate
-    memory_estimate(const YarnImpact::Parameters::Shared &shared,
-                    const FE::Parameters &fe,
-                    const DEM::Parameters &dem,
-                    const HybridParameters &hybrid)
-    {
-      const HybridLayout l = hybrid_layout(shared, fe, dem, hybrid);
-      YarnImpact::Parameters::Shared dem_shared, fe_shared;
-      DEM::Parameters dem_p;
-      FE::Parameters fe_p;
-      dem_part(shared, dem, l, dem_shared, dem_p);
-      fe_part(shared, fe, l, fe_shared, fe_p);
-      MemoryEstimate e = DEM::memory_estimate(dem_shared, dem_p);
-      e.bytes += FE::memory_estimate(fe_shared, fe_p).bytes;
-      e.parameter = "Hybrid/DEM half-length";
-      return e;
-    }
 
 
     namespace
@@ -386,13 +49,13 @@ namespace YarnImpact
           , layout(hybrid_layout(shared, fe, dem, hybrid))
           , communicator(communicator)
         {
-          DEM::Parameters dem_p;
-          FE::Parameters fe_p;
-          dem_part(shared, dem, layout, dem_shared, dem_p);
-          fe_part(shared, fe, layout, fe_shared, fe_p);
-          fe_p.section_quadrature_factor = section_quadrature(shared, fe, dem);
-          fe_model  = FE::create_model(fe_shared, fe_p, communicator);
-          dem_model = DEM::create_model(dem_shared, dem_p, communicator);
+          HybridParts parts = hybrid_parts(shared, fe, dem, layout);
+          parts.fe.section_quadrature_factor =
+            section_quadrature(shared, fe, dem);
+          dem_shared = parts.dem_shared;
+          fe_shared  = parts.fe_shared;
+          fe_model   = FE::create_model(fe_shared, parts.fe, communicator);
+          dem_model  = DEM::create_model(dem_shared, parts.dem, communicator);
         }
 
         std::string
@@ -536,6 +199,9 @@ namespace YarnImpact
         double coupling_work = 0.;
         std::vector<double> node_force, particle_force, node_acceleration,
           particle_acceleration, multipliers;
+        /** The overlap's node velocities [m/s], N^T lambda [N] and zeros,
+         * for the coupling's power. */
+        std::vector<double> node_velocity, node_multipliers, zero_node_force;
       };
 
 
@@ -648,6 +314,9 @@ namespace YarnImpact
         const unsigned int n_p = constraint.n_particles();
         node_force.assign(3 * n_coupled, 0.);
         node_acceleration.assign(3 * n_coupled, 0.);
+        node_velocity.assign(3 * n_coupled, 0.);
+        node_multipliers.assign(3 * n_coupled, 0.);
+        zero_node_force.assign(3 * n_coupled, 0.);
         particle_force.assign(3 * n_p, 0.);
         particle_acceleration.assign(3 * n_p, 0.);
         multipliers.assign(3 * n_p, 0.);
@@ -676,9 +345,13 @@ namespace YarnImpact
         std::fill(particle_force.begin(), particle_force.end(), 0.);
         // Gather: each entry has one owner and the others add zeros, so the
         // sums are exact and the same on every rank and partition.
+        std::fill(node_velocity.begin(), node_velocity.end(), 0.);
         for (const auto &[c, dofs] : owned_nodes)
           for (unsigned int d = 0; d < 3; ++d)
-            node_force[3 * c + d] = fe.force[dofs[d]];
+            {
+              node_force[3 * c + d]    = fe.force[dofs[d]];
+              node_velocity[3 * c + d] = fe.velocity[dofs[d]];
+            }
         const unsigned int first   = layout.first_coupled_station;
         const unsigned int s_begin = std::max(first, dem.station_begin);
         const unsigned int s_end =
@@ -692,6 +365,7 @@ namespace YarnImpact
                 particle_force[3 * p + d] = dem.force[3 * i + d];
             }
         Utilities::MPI::sum(node_force, communicator, node_force);
+        Utilities::MPI::sum(node_velocity, communicator, node_velocity);
         Utilities::MPI::sum(particle_force, communicator, particle_force);
 
         constraint.accelerations(node_force.data(),
@@ -699,18 +373,17 @@ namespace YarnImpact
                                  node_acceleration.data(),
                                  particle_acceleration.data(),
                                  multipliers.data());
-        // The multipliers' power on the spheres this rank owns, summed over
-        // the ranks independently of the partition.
-        ReproducibleSum power(1);
-        for (unsigned int s = s_begin; s < s_end; ++s)
-          for (unsigned int f = 0; f < n_fibres; ++f)
-            {
-              const std::size_t i = dem.local_index(s, f);
-              const std::size_t p = std::size_t(s - first) * n_fibres + f;
-              for (unsigned int d = 0; d < 3; ++d)
-                power.add(0, multipliers[3 * p + d] * dem.velocity[3 * i + d]);
-            }
-        coupling_work += dt * power.sum(communicator)[0];
+        // The multipliers' power on the spheres, sum_i lambda_i . v_i: the
+        // spheres move with the nodes (v_i = N v), so it is
+        // (N^T lambda) . v on the overlap's nodes, the same sum in the same
+        // order on every rank.
+        constraint.generalised_force(zero_node_force.data(),
+                                     multipliers.data(),
+                                     node_multipliers.data());
+        double power = 0.;
+        for (unsigned int k = 0; k < node_velocity.size(); ++k)
+          power += node_multipliers[k] * node_velocity[k];
+        coupling_work += dt * power;
 
         // Scatter: the force that gives each its coupled acceleration
         // through its own kick.

@@ -75,6 +75,50 @@ namespace
     bool clamped;
   };
 
+  /**
+   * The particle weight beta of the string (doc/hybrid.md section 2.1):
+   * 1 for x <= a - w, 0 for x >= a, linear between; here linear across the
+   * overlap's cells, so that a truss straddling a node gives the ghost
+   * force of section 2.4.
+   */
+  class OverlapWeight
+  {
+  public:
+    OverlapWeight(const double a, const double w)
+      : a(a)
+      , w(w)
+    {}
+
+    double
+    particle(const double x) const
+    {
+      return x <= a - w ? 1. : x >= a ? 0. : (a - x) / w;
+    }
+
+    /** Mean of the weight over [x0, x1] (exact: it is piecewise linear);
+     * the point value for x0 == x1. */
+    double
+    mean_particle(const double x0, const double x1) const
+    {
+      if (x0 == x1)
+        return particle(x0);
+      return (integral(x1) - integral(x0)) / (x1 - x0);
+    }
+
+  private:
+    double a, w;
+    /** Integral of the weight from 0 to x >= 0: the plateau, then the
+     * ramp's trapezoid. */
+    double
+    integral(const double x) const
+    {
+      if (x <= a - w)
+        return x;
+      const double s = std::min(x, a) - (a - w);
+      return a - w + s - 0.5 * s * s / w;
+    }
+  };
+
   /** Quadratic energy of a perturbation d (relative displacement of the
    * two ends) of a segment of stiffness k under the pretension T0 along x,
    * with current rest-state length L1: (k d_x^2 + T0/L1 (d_y^2 + d_z^2))/2
@@ -513,7 +557,7 @@ namespace
     }
 
     Geometry g;
-    Coupling::OverlapWeight weight;
+    OverlapWeight weight;
     double prestrain;
     std::vector<double> Xs, ms, xs, vs, fs, as, truss_weight, rest_xs;
     std::vector<double> Xn, Mn, xn, vn, fn, an, element_weight, rest_xn;

@@ -5,6 +5,7 @@
 
 #include <mpi.h>
 
+#include <iosfwd>
 #include <memory>
 
 namespace dealii
@@ -42,6 +43,18 @@ namespace YarnImpact
   create_model(const ModelType type,
                const AllParameters &parameters,
                const MPI_Comm communicator);
+
+  /**
+   * The memory guard: refuse (InputError naming the parameter that makes it
+   * large) a set-up of the models of @p parameters that would not fit in
+   * this machine's memory, before anything is allocated; with @p print,
+   * rank 0 writes the estimates to @p out. Elementary tests are not
+   * covered.
+   */
+  void
+  check_memory_of_models(const AllParameters &parameters,
+                         const bool print,
+                         std::ostream &out);
 } // namespace YarnImpact
 
 #endif

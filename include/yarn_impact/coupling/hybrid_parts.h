@@ -1,0 +1,80 @@
+#ifndef yarn_impact_coupling_hybrid_parts_h
+#define yarn_impact_coupling_hybrid_parts_h
+
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/coupling/hybrid_model.h>
+#include <yarn_impact/dem/parameters.h>
+#include <yarn_impact/fe/parameters.h>
+
+#include <array>
+#include <functional>
+
+namespace dealii
+{
+  template <int dim, int spacedim>
+  class Triangulation;
+  template <int dim, typename Number>
+  class Point;
+} // namespace dealii
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    /**
+     * The two parts of a hybrid yarn as problems of their own models
+     * (doc/hybrid.md section 3.1): the DEM part, the yarn |x| <= a with the
+     * particle weights of the overlap per station and per truss and a free
+     * end; the FE part, x in [a - w, L/2], with the continuum weights per
+     * cell layer, the density and axial modulus from the fibres, and no
+     * failure (the DEM part holds the breaks). The FE part's section
+     * quadrature (section_quadrature()) is set by the model only: it is
+     * the one field that costs a search over the fibres.
+     */
+    struct HybridParts
+    {
+      YarnImpact::Parameters::Shared dem_shared, fe_shared;
+      DEM::Parameters dem;
+      FE::Parameters fe;
+    };
+
+    /** The parts of the hybrid yarn of @p shared laid out by @p layout. */
+    HybridParts
+    hybrid_parts(const YarnImpact::Parameters::Shared &shared,
+                 const FE::Parameters &fe,
+                 const DEM::Parameters &dem,
+                 const HybridLayout &layout);
+
+    /**
+     * Where a point (y, z) [m] of the section lies: the 2D section cell
+     * whose (clamped) unit coordinates are nearest, its active index in
+     * @p cell_index, its four vertices' indices and their bilinear shape
+     * values there [-]. A fibre centre outside the polygonal section (the
+     * packing ellipse can be a little larger) is tied to the nearest point
+     * of the nearest cell.
+     */
+    void
+    locate_in_section(const dealii::Triangulation<2, 2> &section,
+                      const dealii::Point<2, double> &p,
+                      unsigned int &cell_index,
+                      std::array<unsigned int, 4> &vertices,
+                      std::array<double, 4> &values);
+
+    /**
+     * The FE part's section quadrature (doc/hybrid.md section 3.3): in each
+     * section cell, the four Gauss weights w'_q that give each of its
+     * vertices v the fibres' share of the axial stiffness,
+     * sum_q w'_q psi_v(q) = A / n_f sum_{fibres in the cell} psi_v(f), with
+     * A the ellipse's area (the FE modulus is E_f n_f A_f / A). Returned as
+     * the factor w'_q / (JxW)_q [-] of the Gauss point at a reference
+     * position (x, y, z) [m]; throws InputError naming FE/Section
+     * refinements if a weight is not positive (too few fibres in a cell).
+     */
+    std::function<double(const double *)>
+    section_quadrature(const YarnImpact::Parameters::Shared &shared,
+                       const FE::Parameters &fe,
+                       const DEM::Parameters &dem);
+  } // namespace Coupling
+} // namespace YarnImpact
+
+#endif

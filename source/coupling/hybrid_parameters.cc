@@ -1,0 +1,194 @@
+// The hybrid yarn's parameters (subsection Hybrid), its layout, the
+// problems of its two parts, and the set-up checks (doc/hybrid.md sections
+// 1 and 3.1).
+
+#include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/coupling/hybrid_model.h>
+#include <yarn_impact/coupling/hybrid_parts.h>
+#include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/fe/fe_model.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    using namespace dealii;
+    using YarnImpact::Parameters::require;
+
+
+    void
+    HybridParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Hybrid");
+      prm.declare_entry(
+        "DEM half-length",
+        "3e-3",
+        Patterns::Double(),
+        "Model = hybrid: the DEM fibres model |x| <= a, this half-length, "
+        "rounded to whole FE cells from the clamp; it must hold the "
+        "projectile's contact zone and every fibre break (the run stops, "
+        "naming this parameter, when the FE part's fibre strain comes within "
+        "10 % of Yarn/Failure strain) [m].");
+      prm.declare_entry(
+        "Overlap width",
+        "1e-3",
+        Patterns::Double(),
+        "Model = hybrid: width w of the overlap a - w <= |x| <= a where both "
+        "models exist and their weights go from the DEM's to the FE's, "
+        "rounded to whole FE cells (at least one) [m].");
+      prm.leave_subsection();
+    }
+
+
+    void
+    HybridParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Hybrid");
+      dem_half_length =
+        YarnImpact::Parameters::get_positive_double(prm,
+                                                    "Hybrid",
+                                                    "DEM half-length");
+      overlap_width =
+        YarnImpact::Parameters::get_positive_double(prm,
+                                                    "Hybrid",
+                                                    "Overlap width");
+      prm.leave_subsection();
+    }
+
+
+    HybridLayout
+    hybrid_layout(const YarnImpact::Parameters::Shared &shared,
+                  const FE::Parameters &fe,
+                  const DEM::Parameters &dem,
+                  const HybridParameters &hybrid)
+    {
+      const double half = 0.5 * shared.yarn.length;
+      HybridLayout l;
+      // The DEM's trusses as FibreChains lays them on the whole yarn: L/2
+      // in K equal trusses.
+      const unsigned int K =
+        static_cast<unsigned int>(std::ceil(half / dem.sphere_spacing - 1e-9));
+      l.station_spacing = half / K;
+      // FE cells of about the FE model's own length, whole trusses each.
+      const double nominal = shared.yarn.length / fe.n_axial_cells;
+      l.cell_trusses =
+        std::max<long>(1, std::lround(nominal / l.station_spacing));
+      l.cell_length = l.cell_trusses * l.station_spacing;
+      l.overlap_cells =
+        std::max<long>(1, std::lround(hybrid.overlap_width / l.cell_length));
+      const long fe_only =
+        std::lround((half - hybrid.dem_half_length) / l.cell_length);
+      require(fe_only >= 1,
+              "Hybrid/DEM half-length",
+              "must leave at least one FE cell of " +
+                std::to_string(l.cell_length * 1e3) +
+                " mm between the DEM part and the clamp");
+      require(static_cast<long>(K) - fe_only * long(l.cell_trusses) >
+                long(l.overlap_cells * l.cell_trusses),
+              "Hybrid/Overlap width",
+              "must be smaller than Hybrid/DEM half-length (after rounding "
+              "both to whole FE cells)");
+      l.fe_cells        = fe_only + l.overlap_cells;
+      l.dem_trusses     = K - fe_only * l.cell_trusses;
+      l.dem_half_length = l.dem_trusses * l.station_spacing;
+      l.first_coupled_station =
+        l.dem_trusses - l.overlap_cells * l.cell_trusses;
+      l.overlap_begin = l.first_coupled_station * l.station_spacing;
+      return l;
+    }
+
+
+    HybridParts
+    hybrid_parts(const YarnImpact::Parameters::Shared &shared,
+                 const FE::Parameters &fe,
+                 const DEM::Parameters &dem,
+                 const HybridLayout &l)
+    {
+      HybridParts p;
+      // The DEM part: the yarn |x| <= a.
+      p.dem_shared             = shared;
+      p.dem_shared.yarn.length = 2. * l.dem_half_length;
+      p.dem                    = dem;
+      p.dem.sphere_spacing     = l.station_spacing;
+      p.dem.truss_weight.assign(l.dem_trusses, 1.);
+      for (unsigned int s = l.first_coupled_station; s < l.dem_trusses; ++s)
+        p.dem.truss_weight[s] =
+          l.particle_weight((s - l.first_coupled_station) / l.cell_trusses);
+      // A station's weight is the mean of its two trusses' (the end's outer
+      // side is the FE's alone).
+      p.dem.station_weight.assign(l.dem_trusses + 1, 1.);
+      for (unsigned int s = 1; s <= l.dem_trusses; ++s)
+        p.dem.station_weight[s] =
+          0.5 * (p.dem.truss_weight[s - 1] +
+                 (s < l.dem_trusses ? p.dem.truss_weight[s] : 0.));
+
+      // The FE part: x in [a - w, L/2], the DEM's yarn, no failure.
+      p.fe_shared              = shared;
+      p.fe_shared.yarn.failure = false;
+      p.fe                     = fe;
+      // The same yarn on both sides (doc/hybrid.md section 3.2).
+      p.fe.density_from_fibres       = true;
+      p.fe.axial_modulus_from_fibres = true;
+      p.fe.part_begin                = l.overlap_begin;
+      p.fe.layer_weight.assign(l.fe_cells, 1.);
+      for (unsigned int k = 0; k < l.overlap_cells; ++k)
+        p.fe.layer_weight[k] = 1. - l.particle_weight(k);
+      return p;
+    }
+
+
+    void
+    validate(const YarnImpact::Parameters::Shared &shared,
+             const FE::Parameters &fe,
+             const DEM::Parameters &dem,
+             const HybridParameters &hybrid)
+    {
+      require(shared.general.symmetry == YarnImpact::Parameters::Symmetry::half,
+              "Symmetry",
+              "must be half for Model = hybrid (the coupled overlap is built "
+              "on x >= 0 without the plane z = 0)");
+      require(fe.global_refinements == 0,
+              "FE/Global refinements",
+              "must be 0 for Model = hybrid (the overlap's weights are per "
+              "cell layer; refine with FE/Cells along the axis)");
+      const HybridLayout l = hybrid_layout(shared, fe, dem, hybrid);
+      std::ostringstream zone;
+      zone << "leaves the DEM-only zone |x| < " << l.overlap_begin * 1e3
+           << " mm (after rounding to whole FE cells) no wider than the "
+              "projectile's contact zone, its radius "
+           << 0.5 * shared.projectile.diameter * 1e3
+           << " mm: raise it or narrow Hybrid/Overlap width";
+      require(l.overlap_begin >
+                0.5 * shared.projectile.diameter + shared.yarn.fibre_diameter,
+              "Hybrid/DEM half-length",
+              zone.str());
+      const HybridParts parts = hybrid_parts(shared, fe, dem, l);
+      FE::validate(parts.fe_shared, parts.fe);
+      DEM::validate(parts.dem_shared, parts.dem);
+      // The overlap's section quadrature must exist (positive weights).
+      section_quadrature(shared, fe, dem);
+    }
+
+
+    MemoryEstimate
+    memory_estimate(const YarnImpact::Parameters::Shared &shared,
+                    const FE::Parameters &fe,
+                    const DEM::Parameters &dem,
+                    const HybridParameters &hybrid)
+    {
+      const HybridLayout l    = hybrid_layout(shared, fe, dem, hybrid);
+      const HybridParts parts = hybrid_parts(shared, fe, dem, l);
+      MemoryEstimate e = DEM::memory_estimate(parts.dem_shared, parts.dem);
+      e.bytes += FE::memory_estimate(parts.fe_shared, parts.fe).bytes;
+      e.parameter = "Hybrid/DEM half-length";
+      return e;
+    }
+  } // namespace Coupling
+} // namespace YarnImpact

@@ -1,0 +1,154 @@
+// The FE part's section quadrature from the fibres of the DEM part
+// (doc/hybrid.md section 3.3), and where a fibre lies in the section.
+
+#include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/coupling/hybrid_parts.h>
+#include <yarn_impact/dem/packing.h>
+#include <yarn_impact/fe/yarn_mesh.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    using namespace dealii;
+    using YarnImpact::Parameters::require;
+
+
+    void
+    locate_in_section(const Triangulation<2> &section,
+                      const Point<2> &p,
+                      unsigned int &cell_index,
+                      std::array<unsigned int, 4> &vertices,
+                      std::array<double, 4> &values)
+    {
+      static const MappingQ1<2> mapping;
+      static const FE_Q<2> q1(1);
+      double best = std::numeric_limits<double>::max();
+      for (const auto &cell : section.active_cell_iterators())
+        {
+          Point<2> u;
+          try
+            {
+              u = mapping.transform_real_to_unit_cell(cell, p);
+            }
+          catch (...)
+            {
+              continue;
+            }
+          double outside = 0.;
+          for (unsigned int d = 0; d < 2; ++d)
+            outside = std::max({outside, -u[d], u[d] - 1.});
+          if (outside < best)
+            {
+              best = outside;
+              for (unsigned int d = 0; d < 2; ++d)
+                u[d] = std::clamp(u[d], 0., 1.);
+              cell_index = cell->active_cell_index();
+              for (unsigned int v = 0; v < 4; ++v)
+                {
+                  vertices[v] = cell->vertex_index(v);
+                  values[v]   = q1.shape_value(v, u);
+                }
+            }
+        }
+      AssertThrow(best < std::numeric_limits<double>::max(),
+                  ExcMessage("Hybrid: a fibre centre could not be placed "
+                             "in the FE section"));
+    }
+
+
+    std::function<double(const double *)>
+    section_quadrature(const YarnImpact::Parameters::Shared &shared,
+                       const FE::Parameters &fe,
+                       const DEM::Parameters &dem)
+    {
+      Triangulation<2> section;
+      FE::create_yarn_section(section,
+                              shared.yarn.thickness_semi_axis,
+                              shared.yarn.width_semi_axis,
+                              fe.section_refinements,
+                              false,
+                              fe.preserve_section_area);
+      const DEM::FibreCentres centres = DEM::fibre_centres(shared, dem, false);
+      const double share = shared.yarn.section_area() / centres.size();
+      std::vector<std::array<double, 4>> target(section.n_active_cells(),
+                                                {{0., 0., 0., 0.}});
+      for (unsigned int f = 0; f < centres.size(); ++f)
+        {
+          unsigned int c;
+          std::array<unsigned int, 4> vertices;
+          std::array<double, 4> values;
+          locate_in_section(section,
+                            Point<2>(centres.y[f] * (1. + 1e-9),
+                                     centres.z[f] * (1. + 1e-9)),
+                            c,
+                            vertices,
+                            values);
+          for (unsigned int v = 0; v < 4; ++v)
+            target[c][v] += share * values[v];
+        }
+      const FE_Q<2> q1(1);
+      const QGauss<2> quadrature(2);
+      FEValues<2> values(q1,
+                         quadrature,
+                         update_values | update_JxW_values |
+                           update_quadrature_points);
+      auto points  = std::make_shared<std::vector<Point<2>>>();
+      auto factors = std::make_shared<std::vector<double>>();
+      for (const auto &cell : section.active_cell_iterators())
+        {
+          values.reinit(cell);
+          // sum_q w_q psi_v(q) = t_v: the 4 x 4 system (Psi^T w = t).
+          FullMatrix<double> psi_t(4, 4);
+          Vector<double> t(4), w(4);
+          for (unsigned int v = 0; v < 4; ++v)
+            {
+              t[v] = target[cell->active_cell_index()][v];
+              for (unsigned int q = 0; q < 4; ++q)
+                psi_t(v, q) = values.shape_value(v, q);
+            }
+          psi_t.gauss_jordan();
+          psi_t.vmult(w, t);
+          for (unsigned int q = 0; q < 4; ++q)
+            {
+              std::ostringstream s;
+              s << "gives a section cell of the overlap a Gauss weight "
+                << w[q] / values.JxW(q)
+                << " times its area's: too few fibres in that cell for "
+                   "the overlap's section quadrature (refine less with "
+                   "FE/Section refinements)";
+              require(w[q] > 0., "FE/Section refinements", s.str());
+              points->push_back(values.quadrature_point(q));
+              factors->push_back(w[q] / values.JxW(q));
+            }
+        }
+      const double tol = 1e-6 * shared.yarn.thickness_semi_axis;
+      return [points, factors, tol](const double *xyz) {
+        const Point<2> p(xyz[1], xyz[2]);
+        unsigned int best = 0;
+        for (unsigned int k = 1; k < points->size(); ++k)
+          if (p.distance((*points)[k]) < p.distance((*points)[best]))
+            best = k;
+        if (!(p.distance((*points)[best]) < tol))
+          throw std::logic_error("Hybrid: a Gauss point of the overlap is "
+                                 "not one of the section's");
+        return (*factors)[best];
+      };
+    }
+  } // namespace Coupling
+} // namespace YarnImpact

@@ -1,0 +1,141 @@
+// The FE model's set-up: the yarn data from the fibres, the checks of its
+// parameters against the shared ones (also run by --check), and its memory
+// estimate.
+
+#include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/fe/cell_kernel.h>
+#include <yarn_impact/fe/fe_model.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace YarnImpact
+{
+  namespace FE
+  {
+    Parameters
+    with_fibre_data(const YarnImpact::Parameters::Shared &shared,
+                    const Parameters &given)
+    {
+      Parameters parameters = given;
+      if (given.density_from_fibres)
+        parameters.density = shared.yarn.fibre_density *
+                             shared.yarn.fibre_area() /
+                             shared.yarn.section_area();
+      // The DEM's axial stiffness, n_f E_f A_f, spread over the ellipse.
+      if (given.axial_modulus_from_fibres)
+        {
+          const double modulus = shared.yarn.fibre_modulus *
+                                 shared.yarn.fibre_area() /
+                                 shared.yarn.section_area();
+          parameters.charmetant.k_e = modulus;
+          parameters.linear.E_L     = modulus;
+        }
+      return parameters;
+    }
+
+
+    void
+    validate(const YarnImpact::Parameters::Shared &shared,
+             const Parameters &given)
+    {
+      const Parameters parameters = with_fibre_data(shared, given);
+      using YarnImpact::Parameters::require;
+      require(parameters.n_axial_cells % 2 == 0,
+              "FE/Cells along the axis",
+              "must be even, so that a node layer lies under the projectile "
+              "at x = 0 (the symmetry plane of half and quarter models)");
+      require(shared.yarn.length / parameters.n_axial_cells <
+                0.5 * shared.projectile.diameter,
+              "FE/Cells along the axis",
+              "is too small: cells longer than the projectile radius cannot "
+              "resolve the contact");
+      if (shared.yarn.failure &&
+          shared.yarn.failure_model ==
+            YarnImpact::Parameters::Yarn::FailureModel::progressive)
+        {
+          require(parameters.law == LawType::charmetant,
+                  "Yarn/Failure model",
+                  "= progressive needs FE/Constitutive law = Charmetant: it "
+                  "damages the fibre term 1/2 k_e I_e^2 of the energy, which "
+                  "the linear transversely isotropic law does not separate");
+          // Softening must not snap back in the longest cell: the final
+          // strain I_u = 2 G_f / (h k_e I_0) must lie above the onset I_0,
+          // i.e. G_f above the elastic energy per area h k_e I_0^2 / 2
+          // (doc/theory.md section 5).
+          const double h = shared.yarn.length / parameters.n_axial_cells /
+                           std::pow(2., parameters.global_refinements);
+          // The largest onset is at the back face (doc/theory.md 5.4).
+          FailureLaw onset;
+          onset.onset_log_stretch = std::log1p(shared.yarn.damage_onset_strain);
+          onset.onset_spread      = shared.yarn.damage_onset_spread;
+          const double I_0        = onset.onset_log_stretch_at(1.);
+          const double G_min = 0.5 * h * parameters.charmetant.k_e * I_0 * I_0;
+          std::ostringstream s;
+          s << "= " << shared.yarn.fracture_energy
+            << " J/m^2 is not above the elastic energy per unit area of a "
+            << h * 1e3
+            << " mm cell at the largest damage onset strain (Damage onset "
+               "strain x (1 + Damage onset spread)), "
+            << G_min
+            << " J/m^2: its softening would snap back (raise it or refine "
+               "FE/Cells along the axis)";
+          require(shared.yarn.fracture_energy > G_min,
+                  "Yarn/Fracture energy",
+                  s.str());
+          if (shared.yarn.softening_tail_stress > 0.)
+            {
+              // The bilinear envelope must fall on both branches in the
+              // longest cell at the largest onset, where both margins are
+              // smallest: I_0 < I_k < I_u (doc/theory.md section 5.5).
+              onset.fracture_energy   = shared.yarn.fracture_energy;
+              onset.fibre_modulus     = parameters.charmetant.k_e;
+              onset.tail_stress_ratio = shared.yarn.softening_tail_stress;
+              onset.tail_energy       = shared.yarn.softening_tail_energy;
+              const double I_k        = onset.kink_log_stretch(h, I_0);
+              const double I_u        = onset.final_log_stretch(h, I_0);
+              std::ostringstream k;
+              k << "leaves the first branch of the softening curve of a "
+                << h * 1e3 << " mm cell at the largest onset ending at the "
+                << "fibre log-stretch " << I_k << ", not above the onset "
+                << I_0 << ": it would snap back (lower Softening tail energy, "
+                << "or raise Fracture energy)";
+              require(I_k > I_0, "Yarn/Softening tail energy", k.str());
+              std::ostringstream u;
+              u << "is too small for Softening tail stress = "
+                << shared.yarn.softening_tail_stress << ": the tail of a "
+                << h * 1e3 << " mm cell at the largest onset would end at "
+                << "the fibre log-stretch " << I_u << ", not beyond its kink "
+                << I_k << " (raise it, or lower Softening tail stress)";
+              require(I_u > I_k, "Yarn/Softening tail energy", u.str());
+            }
+        }
+      // The cell count is the memory estimate's, which also names the
+      // parameter that makes it large.
+      const MemoryEstimate size = memory_estimate(shared, parameters);
+      require(size.n_elements <= 5e7,
+              size.parameter,
+              "gives more than 50 million cells");
+    }
+
+
+    MemoryEstimate
+    memory_estimate(const YarnImpact::Parameters::Shared &,
+                    const Parameters &parameters)
+    {
+      const double axial   = parameters.n_axial_cells / 100.;
+      const double section = std::pow(4., parameters.section_refinements);
+      const double global  = std::pow(8., parameters.global_refinements);
+      MemoryEstimate e;
+      e.n_elements   = 12. * 100. * axial * section * global;
+      e.bytes        = 6.5e3 * e.n_elements;
+      e.element_name = "cells";
+      e.parameter =
+        (axial >= section && axial >= global ? "FE/Cells along the axis"
+         : section >= global                 ? "FE/Section refinements"
+                                             : "FE/Global refinements");
+      return e;
+    }
+  } // namespace FE
+} // namespace YarnImpact
