@@ -5,6 +5,7 @@
 #include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/output_file.h>
+#include <yarn_impact/core/output_lock.h>
 #include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/fe/fe_model.h>
 
@@ -21,6 +22,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -108,24 +110,75 @@ namespace YarnImpact
     }
 
     /**
+     * Take @p lock of Output/Directory @p dir on rank 0 (OutputLock),
+     * creating the directory first if @p create. Without @p create a
+     * missing directory is left to the caller's checks. Returns the
+     * refusal, if any, and whether it is a DirectoryInUse.
+     */
+    std::pair<std::string, bool>
+    lock_directory(OutputLock &lock, const std::string &dir, const bool create)
+    {
+      std::error_code ec;
+      if (create)
+        std::filesystem::create_directories(dir, ec);
+      else if (!std::filesystem::is_directory(dir, ec))
+        return {"", false};
+      if (ec)
+        return {"Parameter 'Output/Directory' = '" + dir +
+                  "' cannot be used for output (" + lower_first(ec.message()) +
+                  ").",
+                false};
+      try
+        {
+          lock.acquire(dir);
+        }
+      catch (const DirectoryInUse &e)
+        {
+          return {e.what(), true};
+        }
+      catch (const InputError &e)
+        {
+          return {e.what(), false};
+        }
+      return {"", false};
+    }
+
+    /** Throw rank 0's refusal @p error (empty: none) on every rank, as a
+     * DirectoryInUse if @p in_use, else as an InputError. */
+    void
+    throw_collectively(std::string error, bool in_use)
+    {
+      error  = Utilities::MPI::broadcast(MPI_COMM_WORLD, error, 0);
+      in_use = Utilities::MPI::broadcast(MPI_COMM_WORLD, in_use, 0);
+      if (error.empty())
+        return;
+      if (in_use)
+        throw DirectoryInUse(error);
+      throw InputError(error);
+    }
+
+    /**
      * Make Output/Directory ready for a run before anything is written:
      * refuse an input file the run would overwrite with its parameters.prm;
+     * create the directory and take its @p lock, so that no other run
+     * checks or writes it from here on (a directory in use is refused);
      * refuse a directory that holds an earlier run's output (runs must not
-     * mix), or with Output/Overwrite remove that output; create the
-     * directory and make sure it is writable. Decided on rank 0 (one file
-     * system view, one message) and broadcast; throws InputError on every
-     * rank.
+     * mix), or with Output/Overwrite remove that output; make sure it is
+     * writable. Decided on rank 0 (one file system view, one message) and
+     * broadcast; throws DirectoryInUse or InputError on every rank.
      */
     void
     prepare_output_directory(const Parameters::Output &output,
                              const std::string &input_file,
                              const bool is_root,
-                             std::ostream &out)
+                             std::ostream &out,
+                             OutputLock &lock)
     {
       namespace fs             = std::filesystem;
       const std::string &dir   = output.directory;
       const std::string quoted = "Parameter 'Output/Directory' = '" + dir + "'";
       std::string error;
+      bool in_use = false;
       if (is_root)
         {
           std::error_code ec;
@@ -136,7 +189,9 @@ namespace YarnImpact
                     input_file +
                     "' with the run's parameters.prm: move the file or "
                     "choose another directory.";
-          else if (fs::is_directory(dir, ec))
+          else
+            std::tie(error, in_use) = lock_directory(lock, dir, true);
+          if (error.empty())
             {
               for (fs::directory_iterator it(dir, ec), last; !ec && it != last;
                    it.increment(ec))
@@ -190,41 +245,38 @@ namespace YarnImpact
             }
           if (error.empty())
             {
-              fs::create_directories(dir, ec);
-              if (ec)
-                error = quoted + " cannot be used for output (" +
-                        lower_first(ec.message()) + ").";
-              else
-                {
-                  const std::string probe = dir + "/.yarn-impact-probe";
-                  std::ofstream f(probe);
-                  const bool ok = static_cast<bool>(f << "probe");
-                  f.close();
-                  fs::remove(probe, ec);
-                  if (!ok)
-                    error = quoted + " cannot be used for output (not "
-                                     "writable).";
-                }
+              const std::string probe = dir + "/.yarn-impact-probe";
+              std::ofstream f(probe);
+              const bool ok = static_cast<bool>(f << "probe");
+              f.close();
+              fs::remove(probe, ec);
+              if (!ok)
+                error = quoted + " cannot be used for output (not writable).";
             }
         }
-      error = Utilities::MPI::broadcast(MPI_COMM_WORLD, error, 0);
-      if (!error.empty())
-        throw InputError(error);
+      throw_collectively(error, in_use);
     }
 
     /**
      * Make sure a restart continues the run that wrote the checkpoints in
      * Output/Directory: its parameters.prm must be @p resolved (the same
      * parameters, whatever the file's layout), and at least one model
-     * must have a checkpoint there. Decided on rank 0 and broadcast;
-     * throws InputError on every rank.
+     * must have a checkpoint there. Its @p lock is taken first: a run
+     * still writing there is not continued by a second process. Decided
+     * on rank 0 and broadcast; throws DirectoryInUse or InputError on
+     * every rank.
      */
     void
-    check_restart(const AllParameters &p, const std::string &resolved)
+    check_restart(const AllParameters &p,
+                  const std::string &resolved,
+                  OutputLock &lock)
     {
       const std::string &dir = p.shared.output.directory;
       std::string error;
+      bool in_use = false;
       if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::tie(error, in_use) = lock_directory(lock, dir, false);
+      if (error.empty() && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
         {
           std::ifstream in(dir + "/parameters.prm");
           std::ostringstream earlier;
@@ -250,9 +302,7 @@ namespace YarnImpact
                     "start it again without --restart (Output/Overwrite = "
                     "true).";
         }
-      error = Utilities::MPI::broadcast(MPI_COMM_WORLD, error, 0);
-      if (!error.empty())
-        throw InputError(error);
+      throw_collectively(error, in_use);
     }
 
     /** Remove the checkpoints of a run that has ended (rank 0): they are
@@ -412,6 +462,8 @@ namespace YarnImpact
           }
 
         const auto &output = parameters.shared.output;
+        // Held until the run returns: one owner per output directory.
+        OutputLock lock;
         std::ostringstream resolved;
         prm.print_parameters(resolved, ParameterHandler::ShortPRM);
         if (restart)
@@ -420,11 +472,11 @@ namespace YarnImpact
               throw InputError("--restart: the elementary tests (Elementary "
                                "test/Loading) write no checkpoints; run them "
                                "again from the start.");
-            check_restart(parameters, resolved.str());
+            check_restart(parameters, resolved.str(), lock);
           }
         else
           {
-            prepare_output_directory(output, file, is_root, out);
+            prepare_output_directory(output, file, is_root, out, lock);
             collective_output(MPI_COMM_WORLD, [&] {
               if (is_root)
                 write_file_atomically(output.directory + "/parameters.prm",
@@ -564,6 +616,12 @@ namespace YarnImpact
         if (is_root)
           std::cerr << "yarn-impact: error: " << e.what() << std::endl;
         return 5;
+      }
+    catch (const DirectoryInUse &e)
+      {
+        if (is_root)
+          std::cerr << "yarn-impact: error: " << e.what() << std::endl;
+        return 7;
       }
     catch (const Interrupted &e)
       {
