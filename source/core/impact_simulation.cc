@@ -304,8 +304,12 @@ namespace YarnImpact
     }
     const std::string name = model->name();
     const std::string &dir = p.output.directory;
+    // The checkpoint is verified whole (or the older one taken) before the
+    // run changes anything in the directory.
+    std::string saved_state;
     if (checkpoints.restart)
-      checkpoint_info = Checkpoint::read_info(dir, name, communicator);
+      checkpoint_info =
+        Checkpoint::read(dir, name, communicator, saved_state);
     const bool restarted = checkpoint_info.generation > 0;
     if (!restarted)
       collective_output(communicator, [&] {
@@ -355,7 +359,8 @@ namespace YarnImpact
           dir,
           name,
           checkpoint_info.slot,
-          Utilities::MPI::this_mpi_process(communicator)));
+          Utilities::MPI::this_mpi_process(communicator)),
+          std::move(saved_state));
         load_checkpoint(in, schedule, force, result, stop_reason);
         if (!testing)
           out << "[" << name << "] restarted from its checkpoint at t = "

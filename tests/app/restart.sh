@@ -94,7 +94,7 @@ refused "fe rerun without --restart" "Parameter 'Output/Directory' = 'fe' holds 
 cp fe/checkpoint_fe_0_rank0.bin saved.bin
 head -c 1000 saved.bin > fe/checkpoint_fe_0_rank0.bin
 run 1 --restart fe.prm
-refused "fe damaged checkpoint" "the checkpoint file 'fe/checkpoint_fe_0_rank0.bin' does not fit this run \(it ends early\)"
+refused "fe damaged checkpoint" "the newest checkpoint of the fe model is damaged: 'fe/checkpoint_fe_0_rank0.bin': its length does not match its header \(1000 bytes, the header says [0-9]+\): it is cut or damaged; there is no older checkpoint to continue from\.$"
 cp saved.bin fe/checkpoint_fe_0_rank0.bin
 run 1 --restart fe.prm
 [ "$rc" -eq 0 ] || fail "fe restart: exit $rc: $(head -c 300 stderr)"

@@ -30,7 +30,16 @@ namespace YarnImpact
    *   points to a complete checkpoint. A run killed while writing one
    *   keeps the previous one.
    *
-   * The format is the memory image of this build (no conversion): a
+   * Every checkpoint proves that it is whole before anything is restored
+   * (format 2): a rank file is a header (magic, format, rank, ranks,
+   * generation, length), the state and a CRC-32 of both; the info file
+   * records, for the newest checkpoint and the older one in the other
+   * slot, a CRC-32 over the rank files' checksums, and the CRC-32 of
+   * parameters.prm, and ends with a CRC-32 of itself. A restart whose
+   * newest checkpoint is damaged continues from the older one, saying so;
+   * a flipped bit is never restored.
+   *
+   * The state is the memory image of this build (no conversion): a
    * checkpoint is read back by the same program on the same number of
    * ranks, which the restart checks.
    */
@@ -102,8 +111,9 @@ namespace YarnImpact
     class Reader
     {
     public:
-      /** Read the whole of @p file; @throws InputError if it cannot. */
-      explicit Reader(const std::string &file);
+      /** Read @p state, the verified contents of @p file (read()); the
+       * file is named in the messages. */
+      Reader(const std::string &file, std::string state);
 
       /** Expect the section @p name here. */
       void
@@ -174,21 +184,39 @@ namespace YarnImpact
     };
 
 
-    /** What `checkpoint_<model>.txt` says of the checkpoint it points to. */
-    struct Info
+    /** The version of the checkpoint files this build writes and reads:
+     * 2, with checksums (1, without, is refused with a message saying
+     * so). */
+    constexpr unsigned int format = 2;
+
+    /** One checkpoint as `checkpoint_<model>.txt` records it. */
+    struct Record
     {
-      /** Checkpoints written by this run so far, this one included. */
+      /** Checkpoints written by this run so far, this one included; 0: no
+       * checkpoint. */
       unsigned long generation = 0;
-      /** The slot (0 or 1) of the rank files. */
-      unsigned int slot = 0;
-      /** Number of MPI ranks that wrote it. */
-      unsigned int n_ranks = 0;
       /** Simulated time [s] and step of the state. */
       double time        = 0.;
       unsigned long step = 0;
       /** Whether the model had finished its run (with Model = both, the FE
        * part is kept this way while the DEM part runs). */
       bool completed = false;
+      /** CRC-32 over the CRC-32 and length of every rank's file, in rank
+       * order. */
+      std::uint32_t checksum = 0;
+    };
+
+    /** What `checkpoint_<model>.txt` says of the checkpoint it points to
+     * (the Record fields), and of the one before it. */
+    struct Info : Record
+    {
+      /** The slot (0 or 1) of the rank files. */
+      unsigned int slot = 0;
+      /** Number of MPI ranks that wrote it. */
+      unsigned int n_ranks = 0;
+      /** The checkpoint before this one, in the other slot (generation 0:
+       * none): where a restart goes on if this one is damaged. */
+      Record older;
     };
 
     /** `<directory>/checkpoint_<model>.txt`. */
@@ -203,10 +231,12 @@ namespace YarnImpact
               const unsigned int rank);
 
     /**
-     * Write a checkpoint (collective): every rank's @p state into the slot
-     * after @p previous's, then, once all are whole, rank 0's info file
-     * pointing to it. A failed write on any rank throws an OutputError on
-     * every rank and leaves the previous checkpoint as it was.
+     * Write a checkpoint (collective): every rank's @p state, with its
+     * header and checksum, into the slot after @p previous's, then, once
+     * all are whole, rank 0's info file pointing to it and recording
+     * @p previous as the older checkpoint. A failed write on any rank
+     * throws an OutputError on every rank and leaves the previous
+     * checkpoint as it was.
      * @return the info of the checkpoint written
      */
     Info
@@ -220,15 +250,24 @@ namespace YarnImpact
           const std::string &state);
 
     /**
-     * The info of the model's checkpoint in @p directory (collective: read
-     * on rank 0 and broadcast); `generation == 0` if there is none.
-     * @throws InputError if it is unreadable, or was written by another
-     * number of ranks than @p communicator has
+     * The newest whole checkpoint of the model in @p directory
+     * (collective), verified before anything is restored: the info file's
+     * own checksum and format, the checksum of parameters.prm, and every
+     * rank's file of the slot (header, length, checksum, generation, and
+     * the checksum over all of them). If the newest checkpoint fails, the
+     * older one is verified the same way and, if whole, returned, with
+     * one line on the standard error saying so.
+     * @param state set to this rank's state of the checkpoint returned
+     * @return its info; `generation == 0` if the model has none
+     * @throws InputError naming the file and the cause if no checkpoint is
+     * whole, the info file is damaged or of another format, or it was
+     * written by another number of ranks than @p communicator has
      */
     Info
-    read_info(const std::string &directory,
-              const std::string &model,
-              const MPI_Comm communicator);
+    read(const std::string &directory,
+         const std::string &model,
+         const MPI_Comm communicator,
+         std::string &state);
 
     /**
      * Ask a run to stop with a checkpoint at its next history row on
