@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <ostream>
 #include <sstream>
 
@@ -33,8 +34,44 @@ namespace YarnImpact
     namespace
     {
       /**
-       * The hybrid yarn: the two parts, and the coupling applied after
-       * both have computed their forces (doc/hybrid.md section 3).
+       * One overlap of the hybrid yarn: the DEM part it ties to the FE part,
+       * the constraint, and the work done through it.
+       */
+      struct Overlap
+      {
+        /** The DEM part (owned by the model). */
+        ImpactModel *dem = nullptr;
+        /** Reference x of its first node layer [m]. */
+        double x_begin = 0.;
+        /** The DEM part's stations it ties: [station_begin, station_end). */
+        unsigned int station_begin = 0, station_end = 0;
+        /** The DEM part's particle weight per station [-]. */
+        std::vector<double> station_weight;
+
+        BridgingConstraint constraint;
+        /** Coupled FE nodes owned here: coupled index and local dofs. */
+        std::vector<std::pair<unsigned int, std::array<unsigned int, 3>>>
+          owned_nodes;
+        /** Work done by the continuum on the particles (the multipliers'
+         * power, summed), in the modelled part [J]. */
+        double work = 0.;
+        /** Energy taken by the dashpots (averaged tie), in the modelled
+         * part [J]. */
+        double dissipation = 0.;
+        /** Per coupled sphere: its dashpot over its mass [1/s] (empty
+         * without dashpots), and its velocity [m/s]. */
+        std::vector<double> damping_rate, particle_velocity;
+        std::vector<double> node_force, particle_force, node_acceleration,
+          particle_acceleration, multipliers;
+        /** The overlap's node velocities [m/s], N^T lambda [N] and zeros,
+         * for the coupling's power. */
+        std::vector<double> node_velocity, node_multipliers, zero_node_force;
+      };
+
+
+      /**
+       * The hybrid yarn: the parts, and the coupling applied after all
+       * have computed their forces (doc/hybrid.md section 3).
        */
       class HybridModel : public ImpactModel
       {
@@ -47,6 +84,7 @@ namespace YarnImpact
           : shared(shared)
           , fe_parameters(fe)
           , layout(hybrid_layout(shared, fe, dem, hybrid))
+          , hybrid(hybrid)
           , communicator(communicator)
         {
           HybridParts parts = hybrid_parts(shared, fe, dem, layout);
@@ -56,6 +94,22 @@ namespace YarnImpact
           fe_shared  = parts.fe_shared;
           fe_model   = FE::create_model(fe_shared, parts.fe, communicator);
           dem_model  = DEM::create_model(dem_shared, parts.dem, communicator);
+          nose.dem            = dem_model.get();
+          nose.x_begin        = layout.overlap_begin;
+          nose.station_begin  = layout.first_coupled_station;
+          nose.station_end    = layout.dem_trusses + 1;
+          nose.station_weight = parts.dem.station_weight;
+          if (layout.clamp_cells > 0)
+            {
+              clamp_model =
+                DEM::create_model(shared, parts.dem_clamp, communicator);
+              clamp.dem           = clamp_model.get();
+              clamp.x_begin       = layout.clamp_begin;
+              clamp.station_begin = 0;
+              clamp.station_end =
+                layout.overlap_cells * layout.cell_trusses + 1;
+              clamp.station_weight = parts.dem_clamp.station_weight;
+            }
         }
 
         std::string
@@ -76,8 +130,11 @@ namespace YarnImpact
         double
         stable_time_step() const override
         {
-          return std::min(fe_model->stable_time_step(),
-                          dem_model->stable_time_step());
+          double dt = std::min(fe_model->stable_time_step(),
+                               dem_model->stable_time_step());
+          if (clamp_model)
+            dt = std::min(dt, clamp_model->stable_time_step());
+          return dt;
         }
 
         double
@@ -89,7 +146,13 @@ namespace YarnImpact
             throw RunError(
               "the projectile touches the FE part of the hybrid yarn: raise "
               "Hybrid/DEM half-length");
-          couple(dt);
+          if (clamp_model && clamp_model->compute_forces(projectile, dt) != 0.)
+            throw RunError(
+              "the projectile touches the DEM part at the clamp: lower "
+              "Hybrid/Clamp DEM length");
+          couple(nose, dt);
+          if (clamp_model)
+            couple(clamp, dt);
           return f_fe + f_dem;
         }
 
@@ -98,6 +161,8 @@ namespace YarnImpact
         {
           fe_model->kick(dt);
           dem_model->kick(dt);
+          if (clamp_model)
+            clamp_model->kick(dt);
         }
 
         void
@@ -105,6 +170,8 @@ namespace YarnImpact
         {
           fe_model->drift(dt);
           dem_model->drift(dt);
+          if (clamp_model)
+            clamp_model->drift(dt);
         }
 
         Observables
@@ -119,7 +186,8 @@ namespace YarnImpact
         double
         mass() const override
         {
-          return fe_model->mass() + dem_model->mass();
+          return fe_model->mass() + dem_model->mass() +
+                 (clamp_model ? clamp_model->mass() : 0.);
         }
 
         std::string
@@ -130,7 +198,8 @@ namespace YarnImpact
         unsigned long
         n_elements() const override
         {
-          return dem_model->n_elements();
+          return dem_model->n_elements() +
+                 (clamp_model ? clamp_model->n_elements() : 0ul);
         }
 
         void
@@ -139,7 +208,14 @@ namespace YarnImpact
           out.tag("hybrid model");
           fe_model->save_state(out);
           dem_model->save_state(out);
-          out.put(coupling_work);
+          out.put(nose.work);
+          out.put(nose.dissipation);
+          if (clamp_model)
+            {
+              clamp_model->save_state(out);
+              out.put(clamp.work);
+              out.put(clamp.dissipation);
+            }
         }
 
         void
@@ -148,7 +224,14 @@ namespace YarnImpact
           in.tag("hybrid model");
           fe_model->load_state(in);
           dem_model->load_state(in);
-          in.get(coupling_work);
+          in.get(nose.work);
+          in.get(nose.dissipation);
+          if (clamp_model)
+            {
+              clamp_model->load_state(in);
+              in.get(clamp.work);
+              in.get(clamp.dissipation);
+            }
         }
 
         std::string
@@ -156,10 +239,23 @@ namespace YarnImpact
         {
           std::ostringstream s;
           s << dem_model->remarks();
-          s << "Hybrid coupling: work done by the FE part on the DEM part "
-               "through the overlap "
-            << std::setprecision(6) << symmetry() * coupling_work * 1e3
-            << " mJ\n";
+          if (clamp_model)
+            s << "At the clamp: " << clamp_model->remarks();
+          for (const Overlap *o : overlaps())
+            {
+              const char *which = (o == &nose ? "" : " at the clamp");
+              s << "Hybrid coupling" << which
+                << ": work done by the FE part on the DEM part through the "
+                   "overlap "
+                << std::setprecision(6) << symmetry() * o->work * 1e3
+                << " mJ\n";
+              if (!o->damping_rate.empty())
+                s << "Hybrid coupling" << which
+                  << ": energy absorbed by the overlap's dashpots "
+                     "(Hybrid/Fluctuation damping) "
+                  << std::setprecision(6) << symmetry() * o->dissipation * 1e3
+                  << " mJ\n";
+            }
           return s.str();
         }
 
@@ -168,10 +264,26 @@ namespace YarnImpact
         patch_test(const double strain);
 
       private:
-        /** Replace the forces of the overlap's nodes and spheres by those
-         * that give each the coupled acceleration (BridgingConstraint). */
+        /** Tie the overlap @p o: gather its nodes' and spheres' forces,
+         * and replace them by those that give each the coupled
+         * acceleration (BridgingConstraint). */
         void
-        couple(const double dt);
+        couple(Overlap &o, const double dt);
+
+        /** Find the overlap's FE nodes and spheres and build its
+         * constraint. */
+        void
+        set_up(Overlap &o, const Triangulation<2> &section);
+
+        /** The overlaps in use: the one by the nose, and the one at the
+         * clamp if there is a DEM part there. */
+        std::vector<const Overlap *>
+        overlaps() const
+        {
+          if (clamp_model)
+            return {&nose, &clamp};
+          return {&nose};
+        }
 
         double
         symmetry() const
@@ -183,25 +295,14 @@ namespace YarnImpact
         const YarnImpact::Parameters::Shared &shared;
         const FE::Parameters fe_parameters;
         const HybridLayout layout;
+        const HybridParameters hybrid;
         const MPI_Comm communicator;
         /** The parts' problems (the FE model keeps a reference to its
-         * own). */
+         * own; the clamp part's is @p shared). */
         YarnImpact::Parameters::Shared dem_shared, fe_shared;
-        std::unique_ptr<ImpactModel> fe_model, dem_model;
-
-        BridgingConstraint constraint;
-        /** Coupled FE nodes owned here: coupled index and local dofs. */
-        std::vector<std::pair<unsigned int, std::array<unsigned int, 3>>>
-          owned_nodes;
+        std::unique_ptr<ImpactModel> fe_model, dem_model, clamp_model;
         unsigned int n_fibres = 0;
-        /** Work done by the continuum on the particles (the multipliers'
-         * power, summed), in the modelled part [J]. */
-        double coupling_work = 0.;
-        std::vector<double> node_force, particle_force, node_acceleration,
-          particle_acceleration, multipliers;
-        /** The overlap's node velocities [m/s], N^T lambda [N] and zeros,
-         * for the coupling's power. */
-        std::vector<double> node_velocity, node_multipliers, zero_node_force;
+        Overlap nose, clamp;
       };
 
 
@@ -210,9 +311,11 @@ namespace YarnImpact
       {
         fe_model->setup(projectile, out);
         dem_model->setup(projectile, out);
+        if (clamp_model)
+          clamp_model->setup(projectile, out);
 
         // The section the FE part was extruded from: its vertices are the
-        // coupled nodes of each node layer of the overlap.
+        // coupled nodes of each node layer of an overlap.
         Triangulation<2> section;
         FE::create_yarn_section(section,
                                 shared.yarn.thickness_semi_axis,
@@ -220,6 +323,40 @@ namespace YarnImpact
                                 fe_parameters.section_refinements,
                                 false,
                                 fe_parameters.preserve_section_area);
+        set_up(nose, section);
+        if (clamp_model)
+          set_up(clamp, section);
+
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          {
+            out << "[hybrid] DEM part |x| <= " << layout.dem_half_length * 1e3
+                << " mm (" << layout.dem_trusses
+                << " trusses per fibre), overlap "
+                << layout.overlap_begin * 1e3 << " to "
+                << layout.dem_half_length * 1e3 << " mm ("
+                << layout.overlap_cells << " FE cells of "
+                << layout.cell_length * 1e3
+                << " mm = " << layout.cell_trusses << " trusses), FE part to ";
+            if (clamp_model)
+              out << layout.fe_end * 1e3 << " mm in " << layout.fe_cells
+                  << " cells; DEM part at the clamp from "
+                  << layout.clamp_begin * 1e3 << " mm ("
+                  << layout.clamp_trusses << " trusses per fibre), overlap "
+                  << layout.clamp_begin * 1e3 << " to "
+                  << layout.fe_end * 1e3 << " mm; ";
+            else
+              out << "the clamp in " << layout.fe_cells << " cells; ";
+            for (const Overlap *o : overlaps())
+              out << o->constraint.n_nodes() << " coupled FE nodes, "
+                  << o->constraint.n_particles() << " coupled spheres; ";
+            out << "yarn mass " << mass() * 1e6 << " mg\n";
+          }
+      }
+
+
+      void
+      HybridModel::set_up(Overlap &o, const Triangulation<2> &section)
+      {
         const std::vector<Point<2>> &vertices = section.get_vertices();
         const unsigned int n_vertices         = vertices.size();
         const unsigned int n_layers           = layout.overlap_cells + 1;
@@ -234,8 +371,8 @@ namespace YarnImpact
         for (const auto &node : *fe.nodes)
           {
             const double x = (*fe.reference_coordinate)[node[0]];
-            const double j = (x - layout.overlap_begin) / h;
-            if (j > layout.overlap_cells + 1e-6)
+            const double j = (x - o.x_begin) / h;
+            if (j < -1e-6 || j > layout.overlap_cells + 1e-6)
               continue;
             const unsigned int layer = std::lround(j);
             const Point<2> p((*fe.reference_coordinate)[node[1]],
@@ -248,7 +385,7 @@ namespace YarnImpact
                         ExcMessage("Hybrid: an FE node of the overlap is not "
                                    "a vertex of the section"));
             const unsigned int c = layer * n_vertices + v;
-            owned_nodes.push_back({c, node});
+            o.owned_nodes.push_back({c, node});
             node_mass[c] = fe.mass[node[0]];
             found[c]     = 1.;
           }
@@ -258,15 +395,18 @@ namespace YarnImpact
           AssertThrow(found[c] == 1.,
                       ExcMessage("Hybrid: an overlap node of the FE part is "
                                  "missing or owned twice"));
-        constraint = BridgingConstraint(n_coupled);
+        o.constraint = BridgingConstraint(
+          n_coupled,
+          hybrid.averaged_tie ? BridgingConstraint::Tie::averaged :
+                                BridgingConstraint::Tie::every_particle);
         for (unsigned int c = 0; c < n_coupled; ++c)
-          constraint.set_node_mass(c, node_mass[c]);
+          o.constraint.set_node_mass(c, node_mass[c]);
 
         // The overlap's spheres: fibre f of station s is particle
-        // (s - first) n_f + f, tied to the trilinear field at its reference
-        // position (the FE cells are extruded: linear in x times bilinear
-        // in the section).
-        const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
+        // (s - station_begin) n_f + f, tied to the trilinear field at its
+        // reference position (the FE cells are extruded: linear in x times
+        // bilinear in the section).
+        const DEM::CouplingView dem = DEM::coupling_view(*o.dem);
         n_fibres                    = dem.n_fibres;
         std::vector<std::array<unsigned int, 4>> fibre_vertices(n_fibres);
         std::vector<std::array<double, 4>> fibre_values(n_fibres);
@@ -279,12 +419,10 @@ namespace YarnImpact
                               fibre_vertices[f],
                               fibre_values[f]);
           }
-        for (unsigned int s = layout.first_coupled_station;
-             s <= layout.dem_trusses;
-             ++s)
+        for (unsigned int s = o.station_begin; s < o.station_end; ++s)
           {
             const double x = (*dem.station_x)[s];
-            const double t = (x - layout.overlap_begin) / h;
+            const double t = (x - o.x_begin) / h;
             const unsigned int cell =
               std::min<unsigned int>(layout.overlap_cells - 1,
                                      t <= 0. ? 0u : unsigned(std::floor(t)));
@@ -305,91 +443,118 @@ namespace YarnImpact
                           values.push_back(value);
                         }
                     }
-                constraint.add_particle(1. / dem.inverse_mass(s, f),
-                                        nodes,
-                                        values);
+                o.constraint.add_particle(1. / dem.inverse_mass(s, f),
+                                          nodes,
+                                          values);
               }
           }
-        constraint.factorize();
-        const unsigned int n_p = constraint.n_particles();
-        node_force.assign(3 * n_coupled, 0.);
-        node_acceleration.assign(3 * n_coupled, 0.);
-        node_velocity.assign(3 * n_coupled, 0.);
-        node_multipliers.assign(3 * n_coupled, 0.);
-        zero_node_force.assign(3 * n_coupled, 0.);
-        particle_force.assign(3 * n_p, 0.);
-        particle_acceleration.assign(3 * n_p, 0.);
-        multipliers.assign(3 * n_p, 0.);
+        o.constraint.factorize();
+        const unsigned int n_p = o.constraint.n_particles();
+        // The dashpots rise with the continuum's weight, 1 - the station's
+        // particle weight, to zeta c / w.
+        if (hybrid.averaged_tie && hybrid.fluctuation_damping > 0.)
+          {
+            const double c = std::sqrt(shared.yarn.fibre_modulus /
+                                       shared.yarn.fibre_density);
+            const double largest = hybrid.fluctuation_damping * c /
+                                   (layout.overlap_cells * h);
+            o.damping_rate.resize(n_p);
+            for (unsigned int p = 0; p < n_p; ++p)
+              o.damping_rate[p] =
+                largest *
+                (1. - o.station_weight[o.station_begin + p / n_fibres]);
+            o.particle_velocity.assign(3 * n_p, 0.);
+          }
+        o.node_force.assign(3 * n_coupled, 0.);
+        o.node_acceleration.assign(3 * n_coupled, 0.);
+        o.node_velocity.assign(3 * n_coupled, 0.);
+        o.node_multipliers.assign(3 * n_coupled, 0.);
+        o.zero_node_force.assign(3 * n_coupled, 0.);
+        o.particle_force.assign(3 * n_p, 0.);
+        o.particle_acceleration.assign(3 * n_p, 0.);
+        o.multipliers.assign(3 * n_p, 0.);
         // The initial forces, as every step leaves them.
-        couple(0.);
-
-        if (Utilities::MPI::this_mpi_process(communicator) == 0)
-          out << "[hybrid] DEM part |x| <= " << layout.dem_half_length * 1e3
-              << " mm (" << layout.dem_trusses
-              << " trusses per fibre), overlap " << layout.overlap_begin * 1e3
-              << " to " << layout.dem_half_length * 1e3 << " mm ("
-              << layout.overlap_cells << " FE cells of "
-              << layout.cell_length * 1e3 << " mm = " << layout.cell_trusses
-              << " trusses), FE part to the clamp in " << layout.fe_cells
-              << " cells; " << n_coupled << " coupled FE nodes, " << n_p
-              << " coupled spheres; yarn mass " << mass() * 1e6 << " mg\n";
+        couple(o, 0.);
       }
 
 
       void
-      HybridModel::couple(const double dt)
+      HybridModel::couple(Overlap &o, const double dt)
       {
         const FE::CouplingView fe   = FE::coupling_view(*fe_model);
-        const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
-        std::fill(node_force.begin(), node_force.end(), 0.);
-        std::fill(particle_force.begin(), particle_force.end(), 0.);
+        const DEM::CouplingView dem = DEM::coupling_view(*o.dem);
+        std::fill(o.node_force.begin(), o.node_force.end(), 0.);
+        std::fill(o.particle_force.begin(), o.particle_force.end(), 0.);
         // Gather: each entry has one owner and the others add zeros, so the
         // sums are exact and the same on every rank and partition.
-        std::fill(node_velocity.begin(), node_velocity.end(), 0.);
-        for (const auto &[c, dofs] : owned_nodes)
+        std::fill(o.node_velocity.begin(), o.node_velocity.end(), 0.);
+        for (const auto &[c, dofs] : o.owned_nodes)
           for (unsigned int d = 0; d < 3; ++d)
             {
-              node_force[3 * c + d]    = fe.force[dofs[d]];
-              node_velocity[3 * c + d] = fe.velocity[dofs[d]];
+              o.node_force[3 * c + d]    = fe.force[dofs[d]];
+              o.node_velocity[3 * c + d] = fe.velocity[dofs[d]];
             }
-        const unsigned int first   = layout.first_coupled_station;
+        const unsigned int first   = o.station_begin;
         const unsigned int s_begin = std::max(first, dem.station_begin);
-        const unsigned int s_end =
-          std::min(layout.dem_trusses + 1, dem.station_end);
+        const unsigned int s_end   = std::min(o.station_end, dem.station_end);
         for (unsigned int s = s_begin; s < s_end; ++s)
           for (unsigned int f = 0; f < n_fibres; ++f)
             {
               const std::size_t i = dem.local_index(s, f);
               const std::size_t p = std::size_t(s - first) * n_fibres + f;
               for (unsigned int d = 0; d < 3; ++d)
-                particle_force[3 * p + d] = dem.force[3 * i + d];
+                o.particle_force[3 * p + d] = dem.force[3 * i + d];
             }
-        Utilities::MPI::sum(node_force, communicator, node_force);
-        Utilities::MPI::sum(node_velocity, communicator, node_velocity);
-        Utilities::MPI::sum(particle_force, communicator, particle_force);
+        if (!o.damping_rate.empty())
+          {
+            std::fill(o.particle_velocity.begin(),
+                      o.particle_velocity.end(),
+                      0.);
+            for (unsigned int s = s_begin; s < s_end; ++s)
+              for (unsigned int f = 0; f < n_fibres; ++f)
+                {
+                  const std::size_t i = dem.local_index(s, f);
+                  const std::size_t p = std::size_t(s - first) * n_fibres + f;
+                  for (unsigned int d = 0; d < 3; ++d)
+                    o.particle_velocity[3 * p + d] = dem.velocity[3 * i + d];
+                }
+            Utilities::MPI::sum(o.particle_velocity,
+                                communicator,
+                                o.particle_velocity);
+          }
+        Utilities::MPI::sum(o.node_force, communicator, o.node_force);
+        Utilities::MPI::sum(o.node_velocity, communicator, o.node_velocity);
+        Utilities::MPI::sum(o.particle_force, communicator, o.particle_force);
+        if (!o.damping_rate.empty())
+          o.dissipation +=
+            dt * o.constraint.damp_fluctuations(o.node_velocity.data(),
+                                                o.particle_velocity.data(),
+                                                o.damping_rate.data(),
+                                                o.node_force.data(),
+                                                o.particle_force.data());
 
-        constraint.accelerations(node_force.data(),
-                                 particle_force.data(),
-                                 node_acceleration.data(),
-                                 particle_acceleration.data(),
-                                 multipliers.data());
+        o.constraint.accelerations(o.node_force.data(),
+                                   o.particle_force.data(),
+                                   o.node_acceleration.data(),
+                                   o.particle_acceleration.data(),
+                                   o.multipliers.data());
         // The multipliers' power on the spheres, sum_i lambda_i . v_i: the
-        // spheres move with the nodes (v_i = N v), so it is
-        // (N^T lambda) . v on the overlap's nodes, the same sum in the same
-        // order on every rank.
-        constraint.generalised_force(zero_node_force.data(),
-                                     multipliers.data(),
-                                     node_multipliers.data());
+        // constraints hold, so it is (N^T lambda) . v on the overlap's
+        // nodes, the same sum in the same order on every rank.
+        o.constraint.generalised_force(o.zero_node_force.data(),
+                                       o.multipliers.data(),
+                                       o.node_multipliers.data());
         double power = 0.;
-        for (unsigned int k = 0; k < node_velocity.size(); ++k)
-          power += node_multipliers[k] * node_velocity[k];
-        coupling_work += dt * power;
+        for (unsigned int k = 0; k < o.node_velocity.size(); ++k)
+          power += o.node_multipliers[k] * o.node_velocity[k];
+        o.work += dt * power;
 
         // Scatter: the force that gives each its coupled acceleration
         // through its own kick.
-        for (const auto &[c, dofs] : owned_nodes)
+        for (const auto &[c, dofs] : o.owned_nodes)
           for (unsigned int d = 0; d < 3; ++d)
-            fe.force[dofs[d]] = node_acceleration[3 * c + d] * fe.mass[dofs[d]];
+            fe.force[dofs[d]] =
+              o.node_acceleration[3 * c + d] * fe.mass[dofs[d]];
         for (unsigned int s = s_begin; s < s_end; ++s)
           for (unsigned int f = 0; f < n_fibres; ++f)
             {
@@ -397,7 +562,7 @@ namespace YarnImpact
               const std::size_t p = std::size_t(s - first) * n_fibres + f;
               const double m      = 1. / dem.inverse_mass(s, f);
               for (unsigned int d = 0; d < 3; ++d)
-                dem.force[3 * i + d] = particle_acceleration[3 * p + d] * m;
+                dem.force[3 * i + d] = o.particle_acceleration[3 * p + d] * m;
             }
       }
 
@@ -405,6 +570,9 @@ namespace YarnImpact
       double
       HybridModel::patch_test(const double strain)
       {
+        std::vector<ImpactModel *> dem_parts = {dem_model.get()};
+        if (clamp_model)
+          dem_parts.push_back(clamp_model.get());
         {
           const FE::CouplingView fe = FE::coupling_view(*fe_model);
           for (const auto &node : *fe.nodes)
@@ -414,48 +582,77 @@ namespace YarnImpact
                   d == 0 ? strain * (*fe.reference_coordinate)[node[0]] : 0.;
                 fe.velocity[node[d]] = 0.;
               }
-          const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
-          for (unsigned int s = dem.station_begin; s < dem.station_end; ++s)
-            for (unsigned int f = 0; f < dem.n_fibres; ++f)
-              {
-                const std::size_t i     = dem.local_index(s, f);
-                dem.position[3 * i]     = (1. + strain) * (*dem.station_x)[s];
-                dem.velocity[3 * i]     = 0.;
-                dem.velocity[3 * i + 1] = dem.velocity[3 * i + 2] = 0.;
-              }
+          for (ImpactModel *part : dem_parts)
+            {
+              const DEM::CouplingView dem = DEM::coupling_view(*part);
+              for (unsigned int s = dem.station_begin; s < dem.station_end;
+                   ++s)
+                for (unsigned int f = 0; f < dem.n_fibres; ++f)
+                  {
+                    const std::size_t i = dem.local_index(s, f);
+                    dem.position[3 * i] = (1. + strain) * (*dem.station_x)[s];
+                    dem.velocity[3 * i] = 0.;
+                    dem.velocity[3 * i + 1] = dem.velocity[3 * i + 2] = 0.;
+                  }
+            }
         }
         Projectile far(shared.projectile, shared.yarn.thickness_semi_axis);
         far.place_on(1.);
         // The models' own forces, then the generalised ones of the coupled
-        // system (couple() replaces the overlap's).
+        // system (couple() replaces the overlaps').
         fe_model->compute_forces(far, 0.);
-        dem_model->compute_forces(far, 0.);
-        const FE::CouplingView fe   = FE::coupling_view(*fe_model);
-        const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
-        double largest              = 0.;
+        for (ImpactModel *part : dem_parts)
+          part->compute_forces(far, 0.);
+        const FE::CouplingView fe = FE::coupling_view(*fe_model);
+        double largest            = 0.;
         std::vector<bool> coupled(fe.reference_coordinate->size(), false);
-        for (const auto &[c, dofs] : owned_nodes)
-          for (unsigned int d = 0; d < 3; ++d)
-            coupled[dofs[d]] = true;
+        for (const Overlap *o : overlaps())
+          for (const auto &[c, dofs] : o->owned_nodes)
+            for (unsigned int d = 0; d < 3; ++d)
+              coupled[dofs[d]] = true;
         for (const auto &node : *fe.nodes)
           for (unsigned int d = 0; d < 3; ++d)
             if (!coupled[node[d]] && fe.inverse_mass[node[d]] != 0.)
               largest = std::max(largest, std::abs(fe.force[node[d]]));
-        for (unsigned int s = dem.station_begin;
-             s < std::min(dem.station_end, layout.first_coupled_station);
-             ++s)
-          for (unsigned int f = 0; f < dem.n_fibres; ++f)
-            for (unsigned int d = (s == 0 ? 1 : 0); d < 3; ++d)
-              largest =
-                std::max(largest,
-                         std::abs(dem.force[3 * dem.local_index(s, f) + d]));
-        couple(0.);
-        std::vector<double> generalised(node_force.size());
-        constraint.generalised_force(node_force.data(),
-                                     particle_force.data(),
-                                     generalised.data());
-        for (const double g : generalised)
-          largest = std::max(largest, std::abs(g));
+        // The free spheres outside the overlaps: the DEM part's by the nose
+        // (x normal to the plane x = 0 is held there), the one's at the
+        // clamp but the clamped station.
+        {
+          const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
+          for (unsigned int s = dem.station_begin;
+               s < std::min(dem.station_end, nose.station_begin);
+               ++s)
+            for (unsigned int f = 0; f < dem.n_fibres; ++f)
+              for (unsigned int d = (s == 0 ? 1 : 0); d < 3; ++d)
+                largest =
+                  std::max(largest,
+                           std::abs(dem.force[3 * dem.local_index(s, f) + d]));
+        }
+        if (clamp_model)
+          {
+            const DEM::CouplingView dem = DEM::coupling_view(*clamp_model);
+            for (unsigned int s = std::max(dem.station_begin,
+                                           clamp.station_end);
+                 s < std::min(dem.station_end, dem.n_stations - 1);
+                 ++s)
+              for (unsigned int f = 0; f < dem.n_fibres; ++f)
+                for (unsigned int d = 0; d < 3; ++d)
+                  largest = std::max(
+                    largest,
+                    std::abs(dem.force[3 * dem.local_index(s, f) + d]));
+          }
+        couple(nose, 0.);
+        if (clamp_model)
+          couple(clamp, 0.);
+        for (const Overlap *o : overlaps())
+          {
+            std::vector<double> generalised(o->node_force.size());
+            o->constraint.generalised_force(o->node_force.data(),
+                                            o->particle_force.data(),
+                                            generalised.data());
+            for (const double g : generalised)
+              largest = std::max(largest, std::abs(g));
+          }
         largest              = Utilities::MPI::max(largest, communicator);
         const double tension = shared.yarn.fibre_modulus * M_PI * 0.25 *
                                shared.yarn.fibre_diameter *
@@ -469,6 +666,9 @@ namespace YarnImpact
       {
         const Observables a = fe_model->observables();
         const Observables b = dem_model->observables();
+        Observables c;
+        if (clamp_model)
+          c = clamp_model->observables();
         if (a.max_strain >= 0.9 * shared.yarn.failure_strain &&
             shared.yarn.failure)
           {
@@ -476,24 +676,49 @@ namespace YarnImpact
             s << "the FE part's largest fibre strain " << a.max_strain
               << " is within 10 % of Yarn/Failure strain "
               << shared.yarn.failure_strain
-              << ": fibres would break outside the DEM part; raise "
-                 "Hybrid/DEM half-length";
+              << ": fibres would break outside the DEM part"
+              << (clamp_model ? "s" : "")
+              << "; raise Hybrid/DEM half-length"
+              << (clamp_model ? " or Hybrid/Clamp DEM length" :
+                                " (or set Hybrid/Clamp DEM length)");
             throw RunError(s.str());
           }
+        double dashpots = 0.;
+        for (const Overlap *o : overlaps())
+          dashpots += o->dissipation;
         Observables o;
-        o.kinetic_energy    = a.kinetic_energy + b.kinetic_energy;
-        o.elastic_energy    = a.elastic_energy + b.elastic_energy;
-        o.contact_energy    = a.contact_energy + b.contact_energy;
-        o.dissipated_energy = a.dissipated_energy + b.dissipated_energy;
-        o.max_strain        = std::max(a.max_strain, b.max_strain);
-        o.n_failed          = b.n_failed;
-        o.n_eroded          = b.n_eroded;
-        o.n_damaged         = b.n_damaged;
-        o.cut_through       = b.cut_through;
+        o.kinetic_energy = a.kinetic_energy + b.kinetic_energy;
+        o.elastic_energy = a.elastic_energy + b.elastic_energy;
+        o.contact_energy = a.contact_energy + b.contact_energy;
+        o.dissipated_energy =
+          a.dissipated_energy + b.dissipated_energy + symmetry() * dashpots;
+        o.max_strain  = std::max(a.max_strain, b.max_strain);
+        o.n_failed    = b.n_failed;
+        o.n_eroded    = b.n_eroded;
+        o.n_damaged   = b.n_damaged;
+        o.cut_through = b.cut_through;
+        if (clamp_model)
+          {
+            o.kinetic_energy += c.kinetic_energy;
+            o.elastic_energy += c.elastic_energy;
+            o.contact_energy += c.contact_energy;
+            o.dissipated_energy += c.dissipated_energy;
+            o.max_strain = std::max(o.max_strain, c.max_strain);
+            o.n_failed += c.n_failed;
+            o.n_eroded += c.n_eroded;
+            o.n_damaged += c.n_damaged;
+            // Every fibre broken within one of the parts (a fibre broken
+            // at the nose and another at the clamp do not count).
+            o.cut_through = o.cut_through || c.cut_through;
+          }
         // The profile: the DEM's stations up to the middle of the overlap,
-        // the FE's beyond.
+        // the FE's beyond (up to the middle of the clamp's overlap, and
+        // the clamp part's stations after it).
         const double middle =
           0.5 * (layout.overlap_begin + layout.dem_half_length);
+        const double clamp_middle =
+          clamp_model ? 0.5 * (layout.clamp_begin + layout.fe_end) :
+                        std::numeric_limits<double>::infinity();
         StationProfile &p = o.profile;
         auto append = [&p](const StationProfile &q, const unsigned int k) {
           p.position.push_back(q.position[k]);
@@ -507,8 +732,16 @@ namespace YarnImpact
           if (k * layout.station_spacing < middle)
             append(b.profile, k);
         for (unsigned int k = 0; k < a.profile.size(); ++k)
-          if (layout.overlap_begin + k * layout.cell_length >= middle)
-            append(a.profile, k);
+          {
+            const double x = layout.overlap_begin + k * layout.cell_length;
+            if (x >= middle && x < clamp_middle)
+              append(a.profile, k);
+          }
+        if (clamp_model)
+          for (unsigned int k = 0; k < c.profile.size(); ++k)
+            if (layout.clamp_begin + k * layout.station_spacing >=
+                clamp_middle)
+              append(c.profile, k);
         return o;
       }
 
@@ -522,6 +755,9 @@ namespace YarnImpact
           fe_model->write_snapshot(directory, index, time);
         const std::string dem_record =
           dem_model->write_snapshot(directory, index, time);
+        const std::string clamp_record =
+          clamp_model ? clamp_model->write_snapshot(directory, index, time) :
+                        std::string();
         std::ostringstream name;
         name << "hybrid_" << std::setw(4) << std::setfill('0') << index
              << ".vtm";
@@ -539,6 +775,10 @@ namespace YarnImpact
                 << "\"/>\n"
                 << "    <DataSet index=\"1\" name=\"dem\" file=\"" << dem_record
                 << "\"/>\n"
+                << (clamp_model ? "    <DataSet index=\"2\" name=\"dem_clamp\" "
+                                  "file=\"" +
+                                    clamp_record + "\"/>\n" :
+                                  std::string())
                 << "  </vtkMultiBlockDataSet>\n"
                 << "</VTKFile>\n";
               vtm.commit();

@@ -43,6 +43,37 @@ namespace YarnImpact
         "Model = hybrid: width w of the overlap a - w <= |x| <= a where both "
         "models exist and their weights go from the DEM's to the FE's, "
         "rounded to whole FE cells (at least one) [m].");
+      prm.declare_entry(
+        "Clamp DEM length",
+        "0",
+        Patterns::Double(0.),
+        "Model = hybrid: length b of a second DEM part at the clamp, "
+        "L/2 - b <= x <= L/2, tied to the FE part by a second overlap of "
+        "Overlap width, so that the fibres are held one by one at the clamp "
+        "as in the DEM and may break there (doc/hybrid.md section 5.4); "
+        "rounded to whole FE cells, longer than the overlap; 0: none, the "
+        "FE part reaches the clamp [m].");
+      prm.declare_entry(
+        "Overlap tie",
+        "every sphere",
+        Patterns::Selection("every sphere|averaged"),
+        "Model = hybrid: what the overlap ties to the continuum. every "
+        "sphere: each sphere moves with the continuum's field at its "
+        "place. averaged: only the spheres' mass-weighted projection on the "
+        "continuum's shape functions (what the continuum can carry); the "
+        "spheres' motion beyond it (fibre to fibre, or shorter than an FE "
+        "cell) is left to them and absorbed by the dashpots of Fluctuation "
+        "damping.");
+      prm.declare_entry(
+        "Fluctuation damping",
+        "8",
+        Patterns::Double(0.),
+        "Model = hybrid with Overlap tie = averaged: dashpots between each "
+        "sphere of the overlap and the continuum's point at its place, per "
+        "unit of the sphere's mass zeta c / w times the continuum's weight "
+        "there (c the fibres' bar wave speed, w the overlap width): this "
+        "zeta. They damp only what the averaged tie leaves free; 0 turns "
+        "them off [-].");
       prm.leave_subsection();
     }
 
@@ -59,6 +90,15 @@ namespace YarnImpact
         YarnImpact::Parameters::get_positive_double(prm,
                                                     "Hybrid",
                                                     "Overlap width");
+      clamp_dem_length    = prm.get_double("Clamp DEM length");
+      require(std::isfinite(clamp_dem_length),
+              "Hybrid/Clamp DEM length",
+              "must be a finite number");
+      averaged_tie        = prm.get("Overlap tie") == "averaged";
+      fluctuation_damping = prm.get_double("Fluctuation damping");
+      require(std::isfinite(fluctuation_damping),
+              "Hybrid/Fluctuation damping",
+              "must be a finite number");
       prm.leave_subsection();
     }
 
@@ -101,6 +141,30 @@ namespace YarnImpact
       l.first_coupled_station =
         l.dem_trusses - l.overlap_cells * l.cell_trusses;
       l.overlap_begin = l.first_coupled_station * l.station_spacing;
+      l.fe_end        = half;
+      if (hybrid.clamp_dem_length > 0.)
+        {
+          const long clamp =
+            std::lround(hybrid.clamp_dem_length / l.cell_length);
+          require(clamp > long(l.overlap_cells),
+                  "Hybrid/Clamp DEM length",
+                  "must be longer than Hybrid/Overlap width (after rounding "
+                  "both to whole FE cells of " +
+                    std::to_string(l.cell_length * 1e3) + " mm)");
+          require(fe_only - clamp >= 1,
+                  "Hybrid/Clamp DEM length",
+                  "must leave at least one FE-only cell of " +
+                    std::to_string(l.cell_length * 1e3) +
+                    " mm between the two overlaps (lower it or Hybrid/DEM "
+                    "half-length)");
+          l.clamp_cells   = clamp;
+          l.clamp_trusses = clamp * l.cell_trusses;
+          l.clamp_begin   = (K - l.clamp_trusses) * l.station_spacing;
+          l.fe_cells      = fe_only - clamp + 2 * l.overlap_cells;
+          l.fe_end =
+            (K - l.clamp_trusses + l.overlap_cells * l.cell_trusses) *
+            l.station_spacing;
+        }
       return l;
     }
 
@@ -140,6 +204,30 @@ namespace YarnImpact
       p.fe.layer_weight.assign(l.fe_cells, 1.);
       for (unsigned int k = 0; k < l.overlap_cells; ++k)
         p.fe.layer_weight[k] = 1. - l.particle_weight(k);
+
+      // The DEM part at the clamp: the whole yarn's stations from x_c to
+      // L/2, weighted in its overlap [x_c, x_c + w] as the mirror image of
+      // the other.
+      if (l.clamp_cells > 0)
+        {
+          p.fe.part_end        = l.fe_end;
+          const unsigned int n = l.fe_cells - l.overlap_cells;
+          for (unsigned int k = 0; k < l.overlap_cells; ++k)
+            p.fe.layer_weight[n + k] = 1. - l.clamp_particle_weight(k);
+          p.dem_clamp                  = dem;
+          p.dem_clamp.sphere_spacing   = l.station_spacing;
+          p.dem_clamp.clamp_part_begin = l.clamp_begin;
+          p.dem_clamp.truss_weight.assign(l.clamp_trusses, 1.);
+          for (unsigned int s = 0; s < l.overlap_cells * l.cell_trusses; ++s)
+            p.dem_clamp.truss_weight[s] =
+              l.clamp_particle_weight(s / l.cell_trusses);
+          // The free end's outer side is the FE's alone.
+          p.dem_clamp.station_weight.assign(l.clamp_trusses + 1, 1.);
+          for (unsigned int s = 0; s < l.clamp_trusses; ++s)
+            p.dem_clamp.station_weight[s] =
+              0.5 * ((s > 0 ? p.dem_clamp.truss_weight[s - 1] : 0.) +
+                     p.dem_clamp.truss_weight[s]);
+        }
       return p;
     }
 
@@ -172,6 +260,8 @@ namespace YarnImpact
       const HybridParts parts = hybrid_parts(shared, fe, dem, l);
       FE::validate(parts.fe_shared, parts.fe);
       DEM::validate(parts.dem_shared, parts.dem);
+      if (l.clamp_cells > 0)
+        DEM::validate(shared, parts.dem_clamp);
       // The overlap's section quadrature must exist (positive weights).
       section_quadrature(shared, fe, dem);
     }
@@ -187,6 +277,12 @@ namespace YarnImpact
       const HybridParts parts = hybrid_parts(shared, fe, dem, l);
       MemoryEstimate e = DEM::memory_estimate(parts.dem_shared, parts.dem);
       e.bytes += FE::memory_estimate(parts.fe_shared, parts.fe).bytes;
+      if (l.clamp_cells > 0)
+        {
+          const MemoryEstimate c = DEM::memory_estimate(shared, parts.dem_clamp);
+          e.bytes += c.bytes;
+          e.n_elements += c.n_elements;
+        }
       e.parameter = "Hybrid/DEM half-length";
       return e;
     }

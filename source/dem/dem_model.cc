@@ -52,7 +52,7 @@ namespace YarnImpact
         std::string
         name() const override
         {
-          return "dem";
+          return chains.clamp_part ? "dem_clamp" : "dem";
         }
 
         void

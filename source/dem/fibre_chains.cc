@@ -19,7 +19,8 @@ namespace YarnImpact
       FibreChains::FibreChains(const YarnImpact::Parameters::Shared &shared,
                                const Parameters &prm)
         : x_sym(shared.general.symmetry !=
-                YarnImpact::Parameters::Symmetry::none)
+                  YarnImpact::Parameters::Symmetry::none &&
+                prm.clamp_part_begin < 0.)
         , z_sym(shared.general.symmetry ==
                 YarnImpact::Parameters::Symmetry::quarter)
         , factor(
@@ -56,6 +57,24 @@ namespace YarnImpact
         n_st             = x_sym ? n_seg / 2 + 1 : n_seg + 1;
         s_impact         = x_sym ? 0 : n_seg / 2;
         coupled          = !prm.station_weight.empty();
+        clamp_part       = prm.clamp_part_begin >= 0.;
+        // The clamp part: the whole yarn's stations from clamp_part_begin
+        // to L/2, its profile unfolded (station s is profile entry s).
+        double x_begin = x_sym ? 0. : -0.5 * y.length;
+        if (clamp_part)
+          {
+            const double trusses = (0.5 * y.length - prm.clamp_part_begin) / L0;
+            if (!coupled || !(trusses >= 1.) ||
+                std::abs(trusses - std::round(trusses)) > 1e-6)
+              throw std::logic_error(
+                "DEM: a clamp part must be coupled and span whole trusses");
+            n_st     = static_cast<unsigned int>(std::lround(trusses)) + 1;
+            n_prof   = n_st;
+            s_impact = 0;
+            // Both clamp parts of the whole yarn (half symmetry).
+            n_whole_stations = 2 * n_st;
+            x_begin  = 0.5 * y.length - (n_st - 1) * L0;
+          }
         if (coupled && (prm.station_weight.size() != n_st ||
                         prm.truss_weight.size() != n_st - 1))
           throw std::logic_error("DEM: coupling weights for " +
@@ -64,10 +83,11 @@ namespace YarnImpact
                                  std::to_string(n_st));
         for (unsigned int s = 0; s < n_st; ++s)
           {
-            const double x   = x_sym ? s * L0 : -0.5 * y.length + s * L0;
+            const double x   = x_begin + s * L0;
             const bool plane = x_sym && s == 0;
             const bool clamped =
-              (!coupled && s == n_st - 1) || (!x_sym && s == 0);
+              clamp_part ? s == n_st - 1 :
+                           (!coupled && s == n_st - 1) || (!x_sym && s == 0);
             const double weight = coupled ? prm.station_weight[s] : 1.;
             sx0.push_back(x);
             sw.push_back(plane ? 0.5 : 1.);

@@ -84,7 +84,8 @@ namespace YarnImpact
                 }
             }
         std::ostringstream base;
-        base << "dem_" << std::setw(4) << std::setfill('0') << index;
+        base << (chains.clamp_part ? "dem_clamp_" : "dem_") << std::setw(4)
+             << std::setfill('0') << index;
         const std::string piece =
           base.str() + "_r" + std::to_string(rank) + ".vtu";
         VTU::write_piece(directory + "/" + piece, points, lines, pd, cd);

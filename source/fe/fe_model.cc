@@ -54,10 +54,13 @@ namespace YarnImpact
       // A part of a hybrid yarn (FE::Parameters::layer_weight), or the
       // whole yarn.
       const bool part = !parameters.layer_weight.empty();
+      const double part_end =
+        parameters.part_end < 0. ? 0.5 * yarn.length : parameters.part_end;
       if (part)
         create_yarn_part_mesh(tria,
                               yarn,
                               parameters.part_begin,
+                              part_end,
                               parameters.layer_weight.size(),
                               parameters.section_refinements,
                               parameters.preserve_section_area);
@@ -96,7 +99,7 @@ namespace YarnImpact
         {
           n_layers = parameters.layer_weight.size();
           station_spacing =
-            (0.5 * yarn.length - parameters.part_begin) / n_layers;
+            (part_end - parameters.part_begin) / n_layers;
           n_stations     = n_layers + 1;
           station_origin = parameters.part_begin;
         }

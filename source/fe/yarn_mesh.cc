@@ -118,6 +118,7 @@ namespace YarnImpact
     create_yarn_part_mesh(Triangulation<3, 3> &mesh,
                           const Parameters::Yarn &yarn,
                           const double x_begin,
+                          const double x_end,
                           const unsigned int n_cells,
                           const unsigned int section_refinements,
                           const bool preserve_section_area)
@@ -129,7 +130,7 @@ namespace YarnImpact
                           section_refinements,
                           false,
                           preserve_section_area);
-      const double length = 0.5 * yarn.length - x_begin;
+      const double length = x_end - x_begin;
       Triangulation<3> extruded;
       GridGenerator::extrude_triangulation(section,
                                            n_cells + 1,
@@ -148,7 +149,8 @@ namespace YarnImpact
               const Point<3> c = face->center();
               if (std::abs(c[0] - 0.5 * yarn.length) < tol)
                 face->set_boundary_id(BoundaryIds::clamp);
-              else if (std::abs(c[0] - x_begin) < tol)
+              else if (std::abs(c[0] - x_begin) < tol ||
+                       std::abs(c[0] - x_end) < tol)
                 face->set_boundary_id(BoundaryIds::coupled_end);
               else
                 face->set_boundary_id(BoundaryIds::lateral);

@@ -30,6 +30,22 @@ namespace YarnImpact
        * FE cells [m]. */
       double overlap_width = 1e-3;
 
+      /** Length b of the DEM part at the clamp, L/2 - b <= x <= L/2, before
+       * rounding to whole FE cells; 0: none, the FE part reaches the clamp
+       * [m]. */
+      double clamp_dem_length = 0.;
+
+      /** Whether the overlap ties every sphere to the continuum, or only
+       * the spheres' projection on its shape functions
+       * (BridgingConstraint::Tie, doc/hybrid.md section 2.5). */
+      bool averaged_tie = false;
+
+      /** With the averaged tie: the dashpots between each sphere and the
+       * continuum, over the sphere's mass, rise to zeta c / w at the DEM
+       * part's end (c the fibres' bar wave speed, w the overlap width),
+       * in proportion to the continuum's weight; this is zeta [-]. */
+      double fluctuation_damping = 8.;
+
       static void
       declare_parameters(dealii::ParameterHandler &prm);
       void
@@ -58,12 +74,24 @@ namespace YarnImpact
       double dem_half_length = 0., overlap_begin = 0.;
       /** First DEM station of the overlap [-]. */
       unsigned int first_coupled_station = 0;
+      /** The DEM part at the clamp (Hybrid/Clamp DEM length): its cells
+       * and trusses (0: none), where it begins, x_c = L/2 - b, and where
+       * the FE part ends, x_c + w (L/2 without it) [m]. */
+      unsigned int clamp_cells = 0, clamp_trusses = 0;
+      double clamp_begin = 0., fe_end = 0.;
 
       /** Particle weight beta of overlap cell @p k (0 at a - w) [-]. */
       double
       particle_weight(const unsigned int k) const
       {
         return 1. - (k + 0.5) / overlap_cells;
+      }
+      /** Particle weight of cell @p k of the clamp part's overlap (0 at
+       * x_c, its free end) [-]. */
+      double
+      clamp_particle_weight(const unsigned int k) const
+      {
+        return (k + 0.5) / overlap_cells;
       }
     };
 

@@ -25,7 +25,10 @@ namespace YarnImpact
      * The two parts of a hybrid yarn as problems of their own models
      * (doc/hybrid.md section 3.1): the DEM part, the yarn |x| <= a with the
      * particle weights of the overlap per station and per truss and a free
-     * end; the FE part, x in [a - w, L/2], with the continuum weights per
+     * end; with Hybrid/Clamp DEM length, the DEM part at the clamp,
+     * x in [x_c, L/2], weighted the same way in its overlap [x_c, x_c + w];
+     * the FE part, x in [a - w, L/2] (or [a - w, x_c + w]), with the
+     * continuum weights per
      * cell layer, the density and axial modulus from the fibres, and no
      * failure (the DEM part holds the breaks). The FE part's section
      * quadrature (section_quadrature()) is set by the model only: it is
@@ -34,7 +37,10 @@ namespace YarnImpact
     struct HybridParts
     {
       YarnImpact::Parameters::Shared dem_shared, fe_shared;
-      DEM::Parameters dem;
+      /** The DEM part at the impact point, and the one at the clamp
+       * (meaningful when HybridLayout::clamp_cells > 0; its problem is the
+       * whole yarn's, @p shared). */
+      DEM::Parameters dem, dem_clamp;
       FE::Parameters fe;
     };
 

@@ -80,6 +80,10 @@ namespace YarnImpact
         /** Whether the weights come from a coupling (then the last station
          * is free: its motion is the coupling's). */
         bool coupled = false;
+        /** Whether this is the clamp part of a hybrid yarn
+         * (Parameters::clamp_part_begin): then the first station is the
+         * free, coupled one and the last the clamp. */
+        bool clamp_part = false;
       };
 
 

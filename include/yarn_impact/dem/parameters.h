@@ -131,6 +131,18 @@ namespace YarnImpact
        */
       std::vector<double> station_weight, truss_weight;
 
+      /**
+       * Set by a coupling, never by a `.prm`: when not negative, the model
+       * is the clamp part of a hybrid yarn (doc/hybrid.md section 3.1), the
+       * fibres from x = clamp_part_begin [m] to the clamp at L/2 of the
+       * yarn of its shared parameters, on the DEM's stations of the whole
+       * yarn, with no symmetry plane in it: its first station is the end
+       * tied to the continuum (with the weights above), its last the
+       * clamp. Negative: the part around the impact point (or the whole
+       * yarn).
+       */
+      double clamp_part_begin = -1.;
+
       static void
       declare_parameters(dealii::ParameterHandler &prm);
       void

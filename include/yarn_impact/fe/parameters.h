@@ -99,12 +99,14 @@ namespace YarnImpact
       /**
        * Set by a coupling (`Model = hybrid`, coupling/hybrid_model.h), never
        * by a `.prm`: the FE part of a hybrid yarn (half symmetry) spans
-       * x in [part_begin, L/2] [m] in layer_weight.size() equal cell layers,
-       * the end x = part_begin free (the coupling moves it), and the cells
-       * of layer k carry the continuum weight layer_weight[k] [-] in their
-       * mass, stress and energies (doc/hybrid.md). Empty: the whole yarn.
+       * x in [part_begin, part_end] [m] (part_end negative: L/2, the clamp)
+       * in layer_weight.size() equal cell layers, the end x = part_begin
+       * free (the coupling moves it), and so the end x = part_end when it
+       * is not the clamp; the cells of layer k carry the continuum weight
+       * layer_weight[k] [-] in their mass, stress and energies
+       * (doc/hybrid.md). Empty: the whole yarn.
        */
-      double part_begin = 0.;
+      double part_begin = 0., part_end = -1.;
       std::vector<double> layer_weight;
       /** Also set by a coupling: in every cell of the part, each Gauss
        * point's weight is multiplied by this factor of its reference

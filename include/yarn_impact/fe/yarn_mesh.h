@@ -61,14 +61,16 @@ namespace YarnImpact
 
     /**
      * A part of the yarn (half symmetry): the section extruded along x over
-     * [@p x_begin, L/2] in @p n_cells equal layers; the face x = x_begin has
-     * the boundary id BoundaryIds::coupled_end, the others as in
+     * [@p x_begin, @p x_end] [m] in @p n_cells equal layers; the face
+     * x = x_begin, and x = x_end unless it is the clamp L/2, have the
+     * boundary id BoundaryIds::coupled_end, the others as in
      * create_yarn_mesh().
      */
     void
     create_yarn_part_mesh(dealii::Triangulation<3, 3> &mesh,
                           const YarnImpact::Parameters::Yarn &yarn,
                           const double x_begin,
+                          const double x_end,
                           const unsigned int n_cells,
                           const unsigned int section_refinements,
                           const bool preserve_section_area);
