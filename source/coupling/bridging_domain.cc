@@ -9,46 +9,8 @@ namespace YarnImpact
 {
   namespace Coupling
   {
-    namespace
-    {
-      /** In-place Cholesky A = L L^T of the dense row-major n x n matrix
-       * @p A (L in the lower triangle, zeros above); @p what names the
-       * matrix in the error. */
-      void
-      cholesky(std::vector<double> &A,
-               const unsigned int n,
-               const std::string &what)
-      {
-        for (unsigned int j = 0; j < n; ++j)
-          {
-            double *Lj = &A[std::size_t(j) * n];
-            double d   = Lj[j];
-            for (unsigned int k = 0; k < j; ++k)
-              d -= Lj[k] * Lj[k];
-            if (!(d > 0.))
-              throw std::runtime_error("Bridging constraint: " + what +
-                                       " is not positive definite at node " +
-                                       std::to_string(j));
-            Lj[j] = std::sqrt(d);
-            for (unsigned int i = j + 1; i < n; ++i)
-              {
-                double *Li = &A[std::size_t(i) * n];
-                double s   = Li[j];
-                for (unsigned int k = 0; k < j; ++k)
-                  s -= Li[k] * Lj[k];
-                Li[j] = s / Lj[j];
-              }
-            for (unsigned int k = j + 1; k < n; ++k)
-              Lj[k] = 0.;
-          }
-      }
-    } // namespace
-
-
-    BridgingConstraint::BridgingConstraint(const unsigned int n_nodes,
-                                           const Tie tie)
-      : constraint_tie(tie)
-      , node_mass(n_nodes, 0.)
+    BridgingConstraint::BridgingConstraint(const unsigned int n_nodes)
+      : node_mass(n_nodes, 0.)
       , row_start(1, 0)
     {}
 
@@ -102,13 +64,6 @@ namespace YarnImpact
             throw std::runtime_error("Bridging constraint: particle " +
                                      std::to_string(i) +
                                      " has a negative or undefined mass");
-          // An averaged tie leaves each particle its own acceleration
-          // f_i / m_i.
-          if (constraint_tie == Tie::averaged && !(particle_mass[i] > 0.))
-            throw std::runtime_error("Bridging constraint: particle " +
-                                     std::to_string(i) +
-                                     " has no mass (an averaged tie needs "
-                                     "one)");
           double sum = 0.;
           for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
             {
@@ -134,36 +89,43 @@ namespace YarnImpact
               factor[std::size_t(column[p]) * n + column[q]] +=
                 particle_mass[i] * value[p] * value[q];
         }
-      // H = N^T diag(m) N: K without the nodes' own masses.
-      if (constraint_tie == Tie::averaged)
+      // In-place Cholesky K = L L^T, L in the lower triangle.
+      for (unsigned int j = 0; j < n; ++j)
         {
-          average_factor = factor;
-          for (unsigned int j = 0; j < n; ++j)
-            average_factor[std::size_t(j) * n + j] -= node_mass[j];
-          cholesky(average_factor,
-                   n,
-                   "the particles' mass matrix on the continuum's shape "
-                   "functions (too few particles near a node for an "
-                   "averaged tie)");
+          double *Lj = &factor[std::size_t(j) * n];
+          double d   = Lj[j];
+          for (unsigned int k = 0; k < j; ++k)
+            d -= Lj[k] * Lj[k];
+          if (!(d > 0.))
+            throw std::runtime_error(
+              "Bridging constraint: the coupled mass matrix is not positive "
+              "definite at node " +
+              std::to_string(j) +
+              " (a coupled node with neither mass nor a particle near it)");
+          Lj[j] = std::sqrt(d);
+          for (unsigned int i = j + 1; i < n; ++i)
+            {
+              double *Li = &factor[std::size_t(i) * n];
+              double s   = Li[j];
+              for (unsigned int k = 0; k < j; ++k)
+                s -= Li[k] * Lj[k];
+              Li[j] = s / Lj[j];
+            }
+          for (unsigned int k = j + 1; k < n; ++k)
+            Lj[k] = 0.;
         }
-      cholesky(factor,
-               n,
-               "the coupled mass matrix (a coupled node with neither mass "
-               "nor a particle near it)");
       factorized = true;
     }
 
 
     void
-    BridgingConstraint::solve(const std::vector<double> &L,
-                              double *b,
-                              const unsigned int d) const
+    BridgingConstraint::solve(double *b, const unsigned int d) const
     {
       const unsigned int n = node_mass.size();
       // L y = b
       for (unsigned int i = 0; i < n; ++i)
         {
-          const double *Li = &L[std::size_t(i) * n];
+          const double *Li = &factor[std::size_t(i) * n];
           double s         = b[3 * i + d];
           for (unsigned int k = 0; k < i; ++k)
             s -= Li[k] * b[3 * k + d];
@@ -174,8 +136,8 @@ namespace YarnImpact
         {
           double s = b[3 * i + d];
           for (unsigned int k = i + 1; k < n; ++k)
-            s -= L[std::size_t(k) * n + i] * b[3 * k + d];
-          b[3 * i + d] = s / L[std::size_t(i) * n + i];
+            s -= factor[std::size_t(k) * n + i] * b[3 * k + d];
+          b[3 * i + d] = s / factor[std::size_t(i) * n + i];
         }
     }
 
@@ -192,29 +154,8 @@ namespace YarnImpact
           "BridgingConstraint::accelerations before factorize()");
       generalised_force(node_force, particle_force, node_acceleration);
       for (unsigned int d = 0; d < 3; ++d)
-        solve(factor, node_acceleration, d);
-      if (constraint_tie == Tie::every_particle)
-        interpolate(node_acceleration, particle_acceleration);
-      else
-        {
-          // H Lambda = f - diag(M) a: what the multipliers take from the
-          // nodes; the particles get N Lambda per unit mass on top of
-          // their own accelerations.
-          const unsigned int n = node_mass.size();
-          std::vector<double> multiplier(3 * n);
-          for (unsigned int j = 0; j < n; ++j)
-            for (unsigned int d = 0; d < 3; ++d)
-              multiplier[3 * j + d] =
-                node_force[3 * j + d] -
-                node_mass[j] * node_acceleration[3 * j + d];
-          for (unsigned int d = 0; d < 3; ++d)
-            solve(average_factor, multiplier.data(), d);
-          interpolate(multiplier.data(), particle_acceleration);
-          for (unsigned int i = 0; i < particle_mass.size(); ++i)
-            for (unsigned int d = 0; d < 3; ++d)
-              particle_acceleration[3 * i + d] +=
-                particle_force[3 * i + d] / particle_mass[i];
-        }
+        solve(node_acceleration, d);
+      interpolate(node_acceleration, particle_acceleration);
       if (constraint_force != nullptr)
         for (unsigned int i = 0; i < particle_mass.size(); ++i)
           for (unsigned int d = 0; d < 3; ++d)
@@ -254,36 +195,6 @@ namespace YarnImpact
 
 
     double
-    BridgingConstraint::damp_fluctuations(const double *node_velocity,
-                                          const double *particle_velocity,
-                                          const double *rate,
-                                          double *node_force,
-                                          double *particle_force) const
-    {
-      double power = 0.;
-      for (unsigned int i = 0; i < particle_mass.size(); ++i)
-        {
-          const double c = particle_mass[i] * rate[i];
-          if (c == 0.)
-            continue;
-          double v[3] = {0., 0., 0.};
-          for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
-            for (unsigned int d = 0; d < 3; ++d)
-              v[d] += value[p] * node_velocity[3 * column[p] + d];
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              const double f = -c * (particle_velocity[3 * i + d] - v[d]);
-              particle_force[3 * i + d] += f;
-              for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
-                node_force[3 * column[p] + d] -= value[p] * f;
-              power += f * f / c;
-            }
-        }
-      return power;
-    }
-
-
-    double
     BridgingConstraint::largest_violation(const double *node_velocity,
                                           const double *particle_velocity) const
     {
@@ -299,9 +210,7 @@ namespace YarnImpact
     std::size_t
     BridgingConstraint::memory_consumption() const
     {
-      return sizeof(double) *
-               (factor.capacity() + average_factor.capacity() +
-                node_mass.capacity() +
+      return sizeof(double) * (factor.capacity() + node_mass.capacity() +
                                particle_mass.capacity() + value.capacity()) +
              sizeof(unsigned int) * (row_start.capacity() + column.capacity());
     }

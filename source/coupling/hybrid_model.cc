@@ -45,8 +45,6 @@ namespace YarnImpact
         double x_begin = 0.;
         /** The DEM part's stations it ties: [station_begin, station_end). */
         unsigned int station_begin = 0, station_end = 0;
-        /** The DEM part's particle weight per station [-]. */
-        std::vector<double> station_weight;
 
         BridgingConstraint constraint;
         /** Coupled FE nodes owned here: coupled index and local dofs. */
@@ -55,12 +53,6 @@ namespace YarnImpact
         /** Work done by the continuum on the particles (the multipliers'
          * power, summed), in the modelled part [J]. */
         double work = 0.;
-        /** Energy taken by the dashpots (averaged tie), in the modelled
-         * part [J]. */
-        double dissipation = 0.;
-        /** Per coupled sphere: its dashpot over its mass [1/s] (empty
-         * without dashpots), and its velocity [m/s]. */
-        std::vector<double> damping_rate, particle_velocity;
         std::vector<double> node_force, particle_force, node_acceleration,
           particle_acceleration, multipliers;
         /** The overlap's node velocities [m/s], N^T lambda [N] and zeros,
@@ -84,7 +76,6 @@ namespace YarnImpact
           : shared(shared)
           , fe_parameters(fe)
           , layout(hybrid_layout(shared, fe, dem, hybrid))
-          , hybrid(hybrid)
           , communicator(communicator)
         {
           HybridParts parts = hybrid_parts(shared, fe, dem, layout);
@@ -98,7 +89,6 @@ namespace YarnImpact
           nose.x_begin        = layout.overlap_begin;
           nose.station_begin  = layout.first_coupled_station;
           nose.station_end    = layout.dem_trusses + 1;
-          nose.station_weight = parts.dem.station_weight;
           if (layout.clamp_cells > 0)
             {
               clamp_model =
@@ -108,7 +98,6 @@ namespace YarnImpact
               clamp.station_begin = 0;
               clamp.station_end =
                 layout.overlap_cells * layout.cell_trusses + 1;
-              clamp.station_weight = parts.dem_clamp.station_weight;
             }
         }
 
@@ -209,12 +198,10 @@ namespace YarnImpact
           fe_model->save_state(out);
           dem_model->save_state(out);
           out.put(nose.work);
-          out.put(nose.dissipation);
           if (clamp_model)
             {
               clamp_model->save_state(out);
               out.put(clamp.work);
-              out.put(clamp.dissipation);
             }
         }
 
@@ -225,12 +212,10 @@ namespace YarnImpact
           fe_model->load_state(in);
           dem_model->load_state(in);
           in.get(nose.work);
-          in.get(nose.dissipation);
           if (clamp_model)
             {
               clamp_model->load_state(in);
               in.get(clamp.work);
-              in.get(clamp.dissipation);
             }
         }
 
@@ -249,12 +234,6 @@ namespace YarnImpact
                    "overlap "
                 << std::setprecision(6) << symmetry() * o->work * 1e3
                 << " mJ\n";
-              if (!o->damping_rate.empty())
-                s << "Hybrid coupling" << which
-                  << ": energy absorbed by the overlap's dashpots "
-                     "(Hybrid/Fluctuation damping) "
-                  << std::setprecision(6) << symmetry() * o->dissipation * 1e3
-                  << " mJ\n";
             }
           return s.str();
         }
@@ -295,7 +274,6 @@ namespace YarnImpact
         const YarnImpact::Parameters::Shared &shared;
         const FE::Parameters fe_parameters;
         const HybridLayout layout;
-        const HybridParameters hybrid;
         const MPI_Comm communicator;
         /** The parts' problems (the FE model keeps a reference to its
          * own; the clamp part's is @p shared). */
@@ -395,10 +373,7 @@ namespace YarnImpact
           AssertThrow(found[c] == 1.,
                       ExcMessage("Hybrid: an overlap node of the FE part is "
                                  "missing or owned twice"));
-        o.constraint = BridgingConstraint(
-          n_coupled,
-          hybrid.averaged_tie ? BridgingConstraint::Tie::averaged :
-                                BridgingConstraint::Tie::every_particle);
+        o.constraint = BridgingConstraint(n_coupled);
         for (unsigned int c = 0; c < n_coupled; ++c)
           o.constraint.set_node_mass(c, node_mass[c]);
 
@@ -450,21 +425,6 @@ namespace YarnImpact
           }
         o.constraint.factorize();
         const unsigned int n_p = o.constraint.n_particles();
-        // The dashpots rise with the continuum's weight, 1 - the station's
-        // particle weight, to zeta c / w.
-        if (hybrid.averaged_tie && hybrid.fluctuation_damping > 0.)
-          {
-            const double c = std::sqrt(shared.yarn.fibre_modulus /
-                                       shared.yarn.fibre_density);
-            const double largest = hybrid.fluctuation_damping * c /
-                                   (layout.overlap_cells * h);
-            o.damping_rate.resize(n_p);
-            for (unsigned int p = 0; p < n_p; ++p)
-              o.damping_rate[p] =
-                largest *
-                (1. - o.station_weight[o.station_begin + p / n_fibres]);
-            o.particle_velocity.assign(3 * n_p, 0.);
-          }
         o.node_force.assign(3 * n_coupled, 0.);
         o.node_acceleration.assign(3 * n_coupled, 0.);
         o.node_velocity.assign(3 * n_coupled, 0.);
@@ -505,33 +465,9 @@ namespace YarnImpact
               for (unsigned int d = 0; d < 3; ++d)
                 o.particle_force[3 * p + d] = dem.force[3 * i + d];
             }
-        if (!o.damping_rate.empty())
-          {
-            std::fill(o.particle_velocity.begin(),
-                      o.particle_velocity.end(),
-                      0.);
-            for (unsigned int s = s_begin; s < s_end; ++s)
-              for (unsigned int f = 0; f < n_fibres; ++f)
-                {
-                  const std::size_t i = dem.local_index(s, f);
-                  const std::size_t p = std::size_t(s - first) * n_fibres + f;
-                  for (unsigned int d = 0; d < 3; ++d)
-                    o.particle_velocity[3 * p + d] = dem.velocity[3 * i + d];
-                }
-            Utilities::MPI::sum(o.particle_velocity,
-                                communicator,
-                                o.particle_velocity);
-          }
         Utilities::MPI::sum(o.node_force, communicator, o.node_force);
         Utilities::MPI::sum(o.node_velocity, communicator, o.node_velocity);
         Utilities::MPI::sum(o.particle_force, communicator, o.particle_force);
-        if (!o.damping_rate.empty())
-          o.dissipation +=
-            dt * o.constraint.damp_fluctuations(o.node_velocity.data(),
-                                                o.particle_velocity.data(),
-                                                o.damping_rate.data(),
-                                                o.node_force.data(),
-                                                o.particle_force.data());
 
         o.constraint.accelerations(o.node_force.data(),
                                    o.particle_force.data(),
@@ -683,15 +619,11 @@ namespace YarnImpact
                                 " (or set Hybrid/Clamp DEM length)");
             throw RunError(s.str());
           }
-        double dashpots = 0.;
-        for (const Overlap *o : overlaps())
-          dashpots += o->dissipation;
         Observables o;
         o.kinetic_energy = a.kinetic_energy + b.kinetic_energy;
         o.elastic_energy = a.elastic_energy + b.elastic_energy;
         o.contact_energy = a.contact_energy + b.contact_energy;
-        o.dissipated_energy =
-          a.dissipated_energy + b.dissipated_energy + symmetry() * dashpots;
+        o.dissipated_energy = a.dissipated_energy + b.dissipated_energy;
         o.max_strain  = std::max(a.max_strain, b.max_strain);
         o.n_failed    = b.n_failed;
         o.n_eroded    = b.n_eroded;

@@ -53,27 +53,6 @@ namespace YarnImpact
         "as in the DEM and may break there (doc/hybrid.md section 5.4); "
         "rounded to whole FE cells, longer than the overlap; 0: none, the "
         "FE part reaches the clamp [m].");
-      prm.declare_entry(
-        "Overlap tie",
-        "every sphere",
-        Patterns::Selection("every sphere|averaged"),
-        "Model = hybrid: what the overlap ties to the continuum. every "
-        "sphere: each sphere moves with the continuum's field at its "
-        "place. averaged: only the spheres' mass-weighted projection on the "
-        "continuum's shape functions (what the continuum can carry); the "
-        "spheres' motion beyond it (fibre to fibre, or shorter than an FE "
-        "cell) is left to them and absorbed by the dashpots of Fluctuation "
-        "damping.");
-      prm.declare_entry(
-        "Fluctuation damping",
-        "8",
-        Patterns::Double(0.),
-        "Model = hybrid with Overlap tie = averaged: dashpots between each "
-        "sphere of the overlap and the continuum's point at its place, per "
-        "unit of the sphere's mass zeta c / w times the continuum's weight "
-        "there (c the fibres' bar wave speed, w the overlap width): this "
-        "zeta. They damp only what the averaged tie leaves free; 0 turns "
-        "them off [-].");
       prm.leave_subsection();
     }
 
@@ -90,14 +69,9 @@ namespace YarnImpact
         YarnImpact::Parameters::get_positive_double(prm,
                                                     "Hybrid",
                                                     "Overlap width");
-      clamp_dem_length    = prm.get_double("Clamp DEM length");
+      clamp_dem_length = prm.get_double("Clamp DEM length");
       require(std::isfinite(clamp_dem_length),
               "Hybrid/Clamp DEM length",
-              "must be a finite number");
-      averaged_tie        = prm.get("Overlap tie") == "averaged";
-      fluctuation_damping = prm.get_double("Fluctuation damping");
-      require(std::isfinite(fluctuation_damping),
-              "Hybrid/Fluctuation damping",
               "must be a finite number");
       prm.leave_subsection();
     }

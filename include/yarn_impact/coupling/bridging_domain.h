@@ -59,37 +59,9 @@ namespace YarnImpact
     class BridgingConstraint
     {
     public:
-      /**
-       * What the constraints tie (doc/hybrid.md section 2.5).
-       *
-       * every_particle: v_i = sum_J N_J(X_i) v_J for every particle, as
-       * above.
-       *
-       * averaged: only what the continuum can carry, the particles'
-       * mass-weighted projection on its shape functions,
-       * sum_i m_i N_J(X_i) (v_i - sum_K N_K(X_i) v_K) = 0 for every node J
-       * (as many constraints as nodes). The multipliers Lambda_J act on
-       * particle i as m_i sum_J N_J(X_i) Lambda_J and on the nodes as
-       * -H Lambda, with H = N^T diag(m) N. The nodes' accelerations solve
-       * the same K a = f + N^T f_p as above (adding the two equations of
-       * motion eliminates Lambda); then H Lambda = f - diag(M) a gives the
-       * multipliers, and each particle keeps its own force besides:
-       * a_i = f_i / m_i + sum_J N_J(X_i) Lambda_J. Momentum is exact for
-       * the same reason as above, the multipliers do no work on velocities
-       * that satisfy the constraints, and the particles' motion that the
-       * continuum cannot carry (fibre to fibre, or shorter than its cells)
-       * is left free: see damp_fluctuations().
-       */
-      enum class Tie
-      {
-        every_particle,
-        averaged
-      };
-
       /** @p n_nodes coupled nodes (indices 0 .. n_nodes - 1), no particles,
-       * every nodal mass zero, the constraints of @p tie. */
-      explicit BridgingConstraint(const unsigned int n_nodes = 0,
-                                  const Tie tie = Tie::every_particle);
+       * every nodal mass zero. */
+      explicit BridgingConstraint(const unsigned int n_nodes = 0);
 
       /** Set the scaled lumped mass of coupled node @p node: the
        * continuum's mass there, multiplied by its weight [kg]. */
@@ -111,12 +83,10 @@ namespace YarnImpact
                    const std::vector<double> &shape_values);
 
       /**
-       * Assemble K (and H for Tie::averaged) and factorise it. Throws
-       * std::runtime_error naming the cause if a particle's shape values do
-       * not sum to one within 1e-12, a mass is negative (zero, for
-       * Tie::averaged), or K (H) is not positive definite (a coupled node
-       * with neither mass nor a particle in its support; for H, too few
-       * particles to tell its shape functions apart).
+       * Assemble K and factorise it. Throws std::runtime_error naming the
+       * cause if a particle's shape values do not sum to one within 1e-12,
+       * a mass is negative, or K is not positive definite (a coupled node
+       * with neither mass nor a particle in its support).
        */
       void
       factorize();
@@ -142,9 +112,8 @@ namespace YarnImpact
        * @param particle_force the particle model's scaled forces on the
        * constrained particles, 3 per particle [N]
        * @param[out] node_acceleration 3 per node [m/s^2]
-       * @param[out] particle_acceleration 3 per particle: the interpolated
-       * node accelerations (Tie::averaged: with the particle's own force,
-       * see Tie) [m/s^2]
+       * @param[out] particle_acceleration 3 per particle, the interpolated
+       * node accelerations [m/s^2]
        * @param[out] constraint_force if not null, lambda: the force of the
        * continuum on each particle, 3 per particle (its opposite acts on
        * the nodes through N^T) [N]
@@ -155,38 +124,6 @@ namespace YarnImpact
                     double *node_acceleration,
                     double *particle_acceleration,
                     double *constraint_force = nullptr) const;
-
-      /**
-       * Dashpots between each particle and the continuum's point at its
-       * reference position: the force -c_i (v_i - sum_J N_J(X_i) v_J) on
-       * particle i, its opposite on the nodes through N^T, with
-       * c_i = m_i @p rate[i]. Added to @p node_force and @p particle_force
-       * (3 per node, 3 per particle) [N] before accelerations(). With
-       * Tie::averaged they damp only what the constraints leave free (the
-       * mismatch has no part on the continuum's shape functions), so a
-       * rate that grows towards the particles' end of the overlap absorbs
-       * the particle motion the continuum cannot carry instead of
-       * reflecting it. Momentum is exact (each dashpot pulls both ends).
-       * @param node_velocity 3 per node [m/s]
-       * @param particle_velocity 3 per particle [m/s]
-       * @param rate per particle, the dashpot over the particle's mass
-       * [1/s]
-       * @return the power the dashpots dissipate, sum_i c_i |v_i - N v|^2
-       * [W]
-       */
-      double
-      damp_fluctuations(const double *node_velocity,
-                        const double *particle_velocity,
-                        const double *rate,
-                        double *node_force,
-                        double *particle_force) const;
-
-      /** What the constraints tie. */
-      Tie
-      tie() const
-      {
-        return constraint_tie;
-      }
 
       /** The generalised force of the coupled system on the nodes,
        * @p node_force + N^T @p particle_force (3 per node, 3 per particle)
@@ -215,7 +152,6 @@ namespace YarnImpact
       memory_consumption() const;
 
     private:
-      Tie constraint_tie;
       std::vector<double> node_mass;
       std::vector<double> particle_mass;
       /** Shape values of particle i: entries row_start[i] .. row_start[i+1]
@@ -223,16 +159,13 @@ namespace YarnImpact
       std::vector<unsigned int> row_start;
       std::vector<unsigned int> column;
       std::vector<double> value;
-      /** Lower Cholesky factors of K and (Tie::averaged) of H, dense,
-       * row-major n x n. */
-      std::vector<double> factor, average_factor;
+      /** Lower Cholesky factor of K, dense, row-major n x n. */
+      std::vector<double> factor;
       bool factorized = false;
 
-      /** Solve L L^T x = b in place for one component (stride 3,
-       * offset d) with the lower Cholesky factor @p L. */
+      /** Solve K x = b in place for one component (stride 3, offset d). */
       void
-      solve(const std::vector<double> &L, double *b, const unsigned int d)
-        const;
+      solve(double *b, const unsigned int d) const;
     };
   } // namespace Coupling
 } // namespace YarnImpact

@@ -35,17 +35,6 @@ namespace YarnImpact
        * [m]. */
       double clamp_dem_length = 0.;
 
-      /** Whether the overlap ties every sphere to the continuum, or only
-       * the spheres' projection on its shape functions
-       * (BridgingConstraint::Tie, doc/hybrid.md section 2.5). */
-      bool averaged_tie = false;
-
-      /** With the averaged tie: the dashpots between each sphere and the
-       * continuum, over the sphere's mass, rise to zeta c / w at the DEM
-       * part's end (c the fibres' bar wave speed, w the overlap width),
-       * in proportion to the continuum's weight; this is zeta [-]. */
-      double fluctuation_damping = 8.;
-
       static void
       declare_parameters(dealii::ParameterHandler &prm);
       void
