@@ -79,9 +79,11 @@ def main():
         f, c = first[name], cuts[name]
         print(f"{name:7s} first break: {'none' if f is None else f'{f:.2f} us'},"
               f" cut through: {'no' if c is None else f'{c:.2f} us'}")
-    for t in (10.0, 20.0, end):
+    # At 10 and 20 us when both runs reach them, and at the end of the
+    # comparison; each run's row nearest to the same time.
+    for t in sorted({x for x in (10.0, 20.0) if x < end} | {end}):
         a, ta = value_at(hy, width, t)
-        b, _ = value_at(dem, width, t)
+        b, _ = value_at(dem, width, ta)
         print(f"RMS width at impact at {ta:.2f} us: hybrid {a:.4f} mm, DEM {b:.4f} mm"
               f" ({100 * (a / b - 1):+.2f} %)")
 

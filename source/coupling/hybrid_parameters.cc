@@ -46,7 +46,7 @@ namespace YarnImpact
       prm.declare_entry(
         "Clamp DEM length",
         "0",
-        Patterns::Double(0.),
+        Patterns::Double(),
         "Model = hybrid: length b of a second DEM part at the clamp, "
         "L/2 - b <= x <= L/2, tied to the FE part by a second overlap of "
         "Overlap width, so that the fibres are held one by one at the clamp "
@@ -70,9 +70,11 @@ namespace YarnImpact
                                                     "Hybrid",
                                                     "Overlap width");
       clamp_dem_length = prm.get_double("Clamp DEM length");
-      require(std::isfinite(clamp_dem_length),
+      require(std::isfinite(clamp_dem_length) && clamp_dem_length >= 0.,
               "Hybrid/Clamp DEM length",
-              "must be a finite number");
+              "must be 0 (no DEM part at the clamp) or a positive length "
+              "(got " +
+                prm.get("Clamp DEM length") + ")");
       prm.leave_subsection();
     }
 
