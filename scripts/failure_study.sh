@@ -10,6 +10,7 @@ build=${1:-build}
 out=${2:-results/failure_study}
 shift 2 2> /dev/null
 mkdir -p "$out"
+root=$(cd "$(dirname "$0")/.." && pwd)
 
 case_lines() { # name -> the prm lines of that case
   local v=120 model=progressive fric="" mesh="" spread="" tail=""
@@ -38,7 +39,8 @@ case_lines() { # name -> the prm lines of that case
     tail_300)       tail=1; v=300 ;;
     *) echo "unknown case $1" >&2; return 1 ;;
   esac
-  echo "include prm/km2_120ms_fe_progressive.prm"
+  # An include is resolved against the including file's folder ($out).
+  echo "include $root/prm/km2_120ms_fe_progressive.prm"
   echo "subsection Yarn"
   echo "  set Failure model = $model"
   [ -n "$spread" ] && echo "  set Damage onset spread = $spread"

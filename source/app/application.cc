@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <tuple>
 #include <utility>
@@ -169,7 +170,7 @@ namespace YarnImpact
      */
     void
     prepare_output_directory(const Parameters::Output &output,
-                             const std::string &input_file,
+                             const std::vector<std::string> &input_files,
                              const bool is_root,
                              std::ostream &out,
                              OutputLock &lock)
@@ -184,12 +185,13 @@ namespace YarnImpact
           std::error_code ec;
           const std::string resolved = dir + "/parameters.prm";
           std::vector<std::string> earlier;
-          if (fs::equivalent(input_file, resolved, ec))
-            error = quoted + " would overwrite the parameter file '" +
-                    input_file +
-                    "' with the run's parameters.prm: move the file or "
-                    "choose another directory.";
-          else
+          for (const auto &input_file : input_files)
+            if (error.empty() && fs::equivalent(input_file, resolved, ec))
+              error = quoted + " would overwrite the parameter file '" +
+                      input_file +
+                      "' with the run's parameters.prm: move the file or "
+                      "choose another directory.";
+          if (error.empty())
             std::tie(error, in_use) = lock_directory(lock, dir, true);
           if (error.empty())
             {
@@ -258,10 +260,85 @@ namespace YarnImpact
     }
 
     /**
+     * The entries of a parameter text in deal.II's ShortPRM layout (as the
+     * run writes parameters.prm): "Subsection/Entry" -> value.
+     */
+    std::map<std::string, std::string>
+    entries_of(const std::string &text)
+    {
+      std::map<std::string, std::string> entries;
+      std::vector<std::string> path;
+      std::istringstream in(text);
+      std::string line;
+      const auto trim = [](const std::string &t) {
+        const auto b = t.find_first_not_of(" \t\r");
+        const auto e = t.find_last_not_of(" \t\r");
+        return b == std::string::npos ? std::string() : t.substr(b, e - b + 1);
+      };
+      while (std::getline(in, line))
+        {
+          const std::size_t hash = line.find('#');
+          if (hash != std::string::npos)
+            line.erase(hash);
+          line = trim(line);
+          if (line.compare(0, 11, "subsection ") == 0)
+            path.push_back(trim(line.substr(11)));
+          else if (line == "end" && !path.empty())
+            path.pop_back();
+          else if (line.compare(0, 4, "set ") == 0)
+            {
+              const std::size_t eq = line.find('=');
+              std::string name;
+              for (const auto &section : path)
+                name += section + "/";
+              name += trim(line.substr(4, eq == std::string::npos ?
+                                            std::string::npos :
+                                            eq - 4));
+              entries[name] =
+                eq == std::string::npos ? "" : trim(line.substr(eq + 1));
+            }
+        }
+      return entries;
+    }
+
+    /**
+     * The parameters whose values differ between @p earlier and @p now
+     * (ShortPRM texts), Output/Directory left out (a run's folder may be
+     * moved): "Time/End time ('4e-6' there, '8e-6' here)", the first few.
+     */
+    std::string
+    differing_parameters(const std::string &earlier, const std::string &now)
+    {
+      const auto a = entries_of(earlier), b = entries_of(now);
+      std::vector<std::string> differ;
+      for (const auto &[name, value] : b)
+        {
+          if (name == "Output/Directory")
+            continue;
+          const auto it = a.find(name);
+          if (it == a.end())
+            differ.push_back(name + " (not in its parameters.prm)");
+          else if (it->second != value)
+            differ.push_back(name + " ('" + it->second + "' there, '" +
+                             value + "' here)");
+        }
+      for (const auto &[name, value] : a)
+        if (name != "Output/Directory" && b.find(name) == b.end())
+          differ.push_back(name + " (unknown to this version)");
+      std::string text;
+      for (std::size_t i = 0; i < differ.size() && i < 4; ++i)
+        text += (i > 0 ? ", " : "") + differ[i];
+      if (differ.size() > 4)
+        text += " and " + std::to_string(differ.size() - 4) + " more";
+      return text;
+    }
+
+    /**
      * Make sure a restart continues the run that wrote the checkpoints in
-     * Output/Directory: its parameters.prm must be @p resolved (the same
-     * parameters, whatever the file's layout), and at least one model
-     * must have a checkpoint there. Its @p lock is taken first: a run
+     * Output/Directory: its parameters.prm must hold the parameters of
+     * @p resolved (whatever the file's layout), Output/Directory aside (a
+     * run's folder may be moved and continued there), and at least one
+     * model must have a checkpoint there. Its @p lock is taken first: a run
      * still writing there is not continued by a second process. Decided
      * on rank 0 and broadcast; throws DirectoryInUse or InputError on
      * every rank.
@@ -278,29 +355,56 @@ namespace YarnImpact
         std::tie(error, in_use) = lock_directory(lock, dir, false);
       if (error.empty() && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
         {
-          std::ifstream in(dir + "/parameters.prm");
-          std::ostringstream earlier;
-          earlier << in.rdbuf();
+          namespace fs = std::filesystem;
+          std::error_code ec;
+          const std::string earlier_file = dir + "/parameters.prm";
+          std::string earlier, why;
           bool any = false;
           for (const std::string name : {"fe", "dem", "hybrid"})
-            any =
-              any || std::filesystem::exists(Checkpoint::info_file(dir, name));
-          if (!in)
+            any = any || fs::exists(Checkpoint::info_file(dir, name), ec);
+          const bool finished = fs::exists(dir + "/summary.txt", ec);
+          if (!fs::is_directory(dir, ec))
+            why = "missing";
+          else if (!fs::exists(earlier_file, ec))
+            why = "missing";
+          else
+            {
+              try
+                {
+                  earlier =
+                    Parameters::read_parameter_file(earlier_file, false).text;
+                }
+              catch (const InputError &e)
+                {
+                  why = e.what();
+                }
+            }
+          if (why == "missing")
             error = "--restart: Output/Directory = '" + dir +
                     "' holds no parameters.prm of an earlier run to continue.";
-          else if (earlier.str() != resolved)
+          else if (!why.empty())
+            error = "--restart: the run in Output/Directory = '" + dir +
+                    "' cannot be continued: " + why;
+          else if (earlier != resolved &&
+                   !differing_parameters(earlier, resolved).empty())
             error = "--restart: the parameters differ from those of the run "
                     "in Output/Directory = '" +
-                    dir +
-                    "' (its parameters.prm): a restart must continue the "
-                    "same run; start a new one without --restart.";
+                    dir + "' (its parameters.prm): " +
+                    differing_parameters(earlier, resolved) +
+                    "; a restart must continue the same run: restore them, "
+                    "or start a new run in another Output/Directory.";
+          else if (!any && finished)
+            error = "--restart: the run in Output/Directory = '" + dir +
+                    "' has finished (its summary.txt is written): there is "
+                    "nothing to continue, and its results are kept. To run "
+                    "it again, choose another Output/Directory.";
           else if (!any)
             error = "--restart: Output/Directory = '" + dir +
                     "' holds no checkpoint (checkpoint_fe.txt, "
                     "checkpoint_dem.txt or checkpoint_hybrid.txt): the run "
-                    "stopped before writing one; "
-                    "start it again without --restart (Output/Overwrite = "
-                    "true).";
+                    "stopped before writing one; start it again without "
+                    "--restart in another Output/Directory (its partial "
+                    "output there is kept).";
         }
       throw_collectively(error, in_use);
     }
@@ -364,34 +468,75 @@ namespace YarnImpact
   }
 
   AllParameters
-  read_parameters(const std::string &file, ParameterHandler &prm)
+  read_parameters(const std::string &file,
+                  ParameterHandler &prm,
+                  std::vector<std::string> *files)
   {
-    {
-      // Checked before opening: deal.II reads a directory as an empty file
-      // (the default case would run), and opening a fifo blocks.
-      const std::string what = "cannot open the parameter file '" + file + "'";
-      std::error_code ec;
-      const auto status = std::filesystem::status(file, ec);
-      if (ec)
-        throw InputError(what + ": " + lower_first(ec.message()) + ".");
-      if (std::filesystem::is_directory(status))
-        throw InputError(what + ": it is a directory.");
-      if (!std::filesystem::is_regular_file(status))
-        throw InputError(what + ": it is not a regular file (a fifo, socket or "
-                                "device).");
-      std::ifstream in(file);
-      if (!in)
-        throw InputError(what + ": " + lower_first(std::strerror(errno)) + ".");
-    }
+    // Read here, not by deal.II: it reads a directory as an empty file (the
+    // default case would run), opening a fifo blocks, and its `include`
+    // follows cycles until the stack overflows. Every file, included ones
+    // too, is checked and read by Parameters::read_parameter_file.
+    std::string extension = std::filesystem::path(file).extension().string();
+    for (char &c : extension)
+      c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool prm_format = extension == ".prm";
+    const Parameters::ExpandedFile input =
+      Parameters::read_parameter_file(file, prm_format);
+    if (files != nullptr)
+      *files = input.files;
+    if (!prm_format && extension != ".xml" && extension != ".json")
+      throw InputError("the parameter file '" + file + "' has " +
+                       (extension.empty() ?
+                          std::string("no extension") :
+                          "an unknown extension '" + extension + "'") +
+                       ": name it .prm (or .xml, .json for deal.II's other "
+                       "formats).");
+    // deal.II names this file in its messages; each "Line <N> of file
+    // <this>" is then replaced by the file and line that line came from.
+    const std::string placeholder = "\x01expanded parameter text\x01";
     try
       {
-        prm.parse_input(file, "", false, false);
+        std::istringstream text(input.text);
+        if (prm_format)
+          prm.parse_input(text, placeholder, "", false);
+        else if (extension == ".xml")
+          prm.parse_input_from_xml(text, false);
+        else
+          prm.parse_input_from_json(text, false);
       }
     catch (const ExceptionBase &e)
       {
         std::ostringstream info;
         e.print_info(info);
-        throw InputError(one_line(info.str()));
+        std::string message = info.str();
+        const std::string tail = "> of file <" + placeholder + ">";
+        for (std::size_t at = message.find(tail); at != std::string::npos;
+             at                = message.find(tail))
+          {
+            const std::size_t open = message.rfind("Line <", at);
+            unsigned long line     = 0;
+            if (open != std::string::npos)
+              line = std::strtoul(message.c_str() + open + 6, nullptr, 10);
+            if (open == std::string::npos || line == 0)
+              {
+                message.replace(at, tail.size(), "> of file <" + file + ">");
+                continue;
+              }
+            const auto &origin =
+              line <= input.origin.size() ?
+                input.origin[line - 1] :
+                std::pair<std::size_t, unsigned int>(0, line);
+            message.replace(open,
+                            at + tail.size() - open,
+                            "Line <" + std::to_string(origin.second) +
+                              "> of file <" + input.files[origin.first] +
+                              ">");
+          }
+        for (std::size_t at = message.find(placeholder);
+             at != std::string::npos;
+             at = message.find(placeholder))
+          message.replace(at, placeholder.size(), file);
+        throw InputError(one_line(message));
       }
     AllParameters parameters;
     try
@@ -448,7 +593,8 @@ namespace YarnImpact
 
     try
       {
-        AllParameters parameters = read_parameters(file, prm);
+        std::vector<std::string> input_files;
+        AllParameters parameters = read_parameters(file, prm, &input_files);
         check_memory_of_models(parameters,
                                !check_only &&
                                  parameters.shared.output.verbosity ==
@@ -476,7 +622,7 @@ namespace YarnImpact
           }
         else
           {
-            prepare_output_directory(output, file, is_root, out, lock);
+            prepare_output_directory(output, input_files, is_root, out, lock);
             collective_output(MPI_COMM_WORLD, [&] {
               if (is_root)
                 write_file_atomically(output.directory + "/parameters.prm",

@@ -10,6 +10,7 @@
 
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -43,10 +44,16 @@ namespace YarnImpact
    * Parse errors of deal.II are turned into one-line InputError messages
    * that name the file line and the entry. A @p file that is not a readable
    * regular file (missing, a directory, a fifo, unreadable) is refused with
-   * an InputError naming it and the cause, before anything is read.
+   * an InputError naming it and the cause, before anything is read. The
+   * same holds for every file it includes (`include FILE`, FILE relative to
+   * the including file's folder; cycles refused): see
+   * Parameters::read_parameter_file. The files read, @p file first, are
+   * stored in @p files if given.
    */
   AllParameters
-  read_parameters(const std::string &file, dealii::ParameterHandler &prm);
+  read_parameters(const std::string &file,
+                  dealii::ParameterHandler &prm,
+                  std::vector<std::string> *files = nullptr);
 
   /**
    * The command line: `yarn-impact file.prm`, `--check file.prm`,
