@@ -15,7 +15,13 @@ Each run is the paper's case (prm/km2_120ms_fe.prm, the linear law of
 prm/study/fe_linear.prm, prm/km2_120ms_dem.prm) at another impact velocity,
 without snapshots, stopping 2 us after the yarn is cut through or at 40 us.
 Runs already done (their summary.txt exists) are reused, so an interrupted
-sweep goes on where it stopped.
+sweep goes on where it stopped: a run's folder is named after its exact
+velocity and end time (120 and 120.4 m/s are two runs), and a run is reused
+only if its key file (NAME.key beside it: SHA-256 of the executable, of the
+generated prm and of the prm it includes) matches; else it is run again.
+
+Bad arguments, files or runs give one line "ballistic_sweep.py: error: ..."
+and exit 2 (command line) or 1, never a traceback.
 
 What is measured, per run (from history_<model>.csv and summary.txt):
   residual velocity      projectile velocity at the end of the run [m/s]
@@ -32,6 +38,7 @@ waves. Found by bisection between the sweep's velocities, to --tolerance.
 """
 import argparse
 import csv
+import hashlib
 import math
 import os
 import re
@@ -72,56 +79,138 @@ def reflection_time(E=FIBRE_MODULUS, rho=DENSITY):
     return LENGTH / math.sqrt(E / rho)
 
 
+PROG = os.path.basename(__file__)
+
+
+class Failure(Exception):
+    """A bad argument, file or run: one line, exit code 1."""
+
+
+def exact(x):
+    """The shortest text that reads back as the float @p x exactly."""
+    return repr(float(x))
+
+
+def run_name(model, velocity, end_time):
+    """Folder name of a run: the exact velocity [m/s] and end time [s], so
+    that two velocities that differ at all never share a run."""
+    return "%s_%sms_%ss" % (model, exact(velocity), exact(end_time))
+
+
+def case_prm(model, velocity, end_time, out):
+    """The prm text of a run (its Output/Directory @p out)."""
+    kind, base, extra = MODELS[model]
+    return ("include %s\n%s" % (os.path.join(ROOT, base), extra) +
+            "subsection Projectile\n  set Initial velocity = %s\nend\n"
+            % exact(velocity) +
+            "subsection Time\n  set End time = %s\n"
+            "  set Stop when cut through = true\n"
+            "  set Time after cut through = 2e-6\nend\n" % exact(end_time) +
+            "subsection Output\n  set Directory = %s\n"
+            "  set Snapshot interval = 0\n  set Overwrite = true\n"
+            "  set Verbosity = quiet\nend\n" % out)
+
+
+def sha256_file(path):
+    h = hashlib.sha256()
+    try:
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                h.update(block)
+    except OSError as e:
+        raise Failure("cannot read %s: %s" % (path, e.strerror or e))
+    return h.hexdigest()
+
+
+def run_key(executable_hash, model, prm_text):
+    """What a run's results depend on: the build, the generated prm and the
+    prm it includes."""
+    base = os.path.join(ROOT, MODELS[model][1])
+    return ("executable %s\nprm %s\nbase %s\n" %
+            (executable_hash, hashlib.sha256(prm_text.encode()).hexdigest(),
+             sha256_file(base)))
+
+
+def reusable(out, key_file, key):
+    """Whether the run in @p out is whole and was made with @p key."""
+    if not os.path.exists(os.path.join(out, "summary.txt")):
+        return False
+    try:
+        with open(key_file) as f:
+            return f.read() == key
+    except (OSError, UnicodeDecodeError):
+        return False
+
+
 def run_case(args, model, velocity, end_time):
     """Run one case (or reuse it) and return its measured figures."""
     kind, base, extra = MODELS[model]
-    name = "%s_%04d_%s" % (model, int(round(velocity)),
-                           "%.0fus" % (end_time * 1e6))
+    name = run_name(model, velocity, end_time)
     out = os.path.join(args.out, name)
-    summary = os.path.join(out, "summary.txt")
-    if not os.path.exists(summary):
-        os.makedirs(args.out, exist_ok=True)
+    text = case_prm(model, velocity, end_time, out)
+    key = run_key(args.executable_hash, model, text)
+    key_file = os.path.join(args.out, name + ".key")
+    if not reusable(out, key_file, key):
         prm = os.path.join(args.out, name + ".prm")
-        with open(prm, "w") as f:
-            f.write("include %s\n%s" % (os.path.join(ROOT, base), extra))
-            f.write("subsection Projectile\n  set Initial velocity = %g\nend\n"
-                    % velocity)
-            f.write("subsection Time\n  set End time = %g\n"
-                    "  set Stop when cut through = true\n"
-                    "  set Time after cut through = 2e-6\nend\n" % end_time)
-            f.write("subsection Output\n  set Directory = %s\n"
-                    "  set Snapshot interval = 0\n  set Overwrite = true\n"
-                    "  set Verbosity = quiet\nend\n" % out)
-        command = [os.path.join(args.build, "yarn-impact"), prm]
+        try:
+            if os.path.exists(key_file):
+                os.remove(key_file)
+            with open(prm, "w") as f:
+                f.write(text)
+        except OSError as e:
+            raise Failure("cannot write %s: %s" % (prm, e.strerror or e))
+        command = [args.executable, prm]
         if kind == "dem" and args.np > 1:
             command = ["mpirun", "-np", str(args.np)] + command
         start = time.time()
         env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
                    OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-        with open(os.path.join(args.out, name + ".log"), "w") as log:
-            rc = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT,
-                                 env=env)
-        print("  %-10s %6.0f m/s to %4.1f us: exit %d, %.0f s" %
-              (model, velocity, end_time * 1e6, rc, time.time() - start),
-              flush=True)
+        log_name = os.path.join(args.out, name + ".log")
+        try:
+            with open(log_name, "w") as log:
+                rc = subprocess.call(command, stdout=log,
+                                     stderr=subprocess.STDOUT, env=env)
+        except OSError as e:
+            raise Failure("cannot run %s: %s" % (command[0],
+                                                 e.strerror or e))
+        print("  %-10s %6s m/s to %4.1f us: exit %d, %.0f s" %
+              (model, "%g" % velocity, end_time * 1e6, rc,
+               time.time() - start), flush=True)
+        if os.path.exists(os.path.join(out, "summary.txt")):
+            try:
+                with open(key_file, "w") as f:
+                    f.write(key)
+            except OSError as e:
+                raise Failure("cannot write %s: %s" % (key_file,
+                                                       e.strerror or e))
     return measure(out, kind, velocity)
 
 
 def measure(out, kind, velocity):
     history = os.path.join(out, "history_%s.csv" % kind)
     if not os.path.exists(history):
-        sys.exit("ballistic_sweep: the run in %s wrote no history: see %s.log"
-                 % (out, out))
-    with open(history) as f:
-        rows = list(csv.DictReader(f))
-    v = [float(r["projectile velocity [m/s]"]) for r in rows]
-    ke = [float(r["projectile kinetic energy [mJ]"]) for r in rows]
-    failed = [float(r["failed elements"]) for r in rows]
-    t = [float(r["t [us]"]) for r in rows]
+        raise Failure("the run in %s wrote no history: see %s.log"
+                      % (out, out))
+    try:
+        with open(history) as f:
+            rows = list(csv.DictReader(f))
+        v = [float(r["projectile velocity [m/s]"]) for r in rows]
+        ke = [float(r["projectile kinetic energy [mJ]"]) for r in rows]
+        failed = [float(r["failed elements"]) for r in rows]
+        t = [float(r["t [us]"]) for r in rows]
+    except (OSError, UnicodeDecodeError, csv.Error, KeyError, ValueError,
+            TypeError) as e:
+        raise Failure("cannot read the history %s: %s" % (history, e))
+    if not rows:
+        raise Failure("the history %s has no rows: see %s.log" % (history, out))
     first = next((t[i] for i in range(len(t)) if failed[i] > 0), None)
     cut = None
     if os.path.exists(os.path.join(out, "summary.txt")):
-        text = open(os.path.join(out, "summary.txt")).read()
+        try:
+            with open(os.path.join(out, "summary.txt")) as f:
+                text = f.read()
+        except (OSError, UnicodeDecodeError) as e:
+            raise Failure("cannot read %s/summary.txt: %s" % (out, e))
         m = re.search(r"yarn cut through:\s+([0-9.]+) us", text)
         cut = float(m.group(1)) if m else None
     return {"velocity": velocity, "residual": v[-1],
@@ -199,32 +288,108 @@ def plot(args, table, critical, smith):
         plt.close(fig)
 
 
+class Parser(argparse.ArgumentParser):
+    """argparse with its errors on one line (no usage block), exit 2."""
+
+    def error(self, message):
+        sys.stderr.write("%s: error: %s (see --help)\n" % (PROG, message))
+        sys.exit(2)
+
+
+def velocity_list(text):
+    """A comma-separated list of finite positive velocities [m/s]."""
+    values = []
+    for item in text.split(","):
+        try:
+            v = float(item)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                "'%s' is not a velocity (a comma-separated list of numbers "
+                "in m/s, e.g. 120,300)" % item.strip())
+        if not (math.isfinite(v) and v > 0):
+            raise argparse.ArgumentTypeError(
+                "velocity '%s' must be a finite positive number of m/s"
+                % item.strip())
+        values.append(v)
+    return values
+
+
+def model_list(text):
+    models = [m.strip() for m in text.split(",")]
+    for m in models:
+        if m not in MODELS:
+            raise argparse.ArgumentTypeError(
+                "unknown model '%s' (choose from %s)" % (m, ",".join(MODELS)))
+    if len(set(models)) != len(models):
+        raise argparse.ArgumentTypeError("a model is named twice in '%s'"
+                                         % text)
+    return models
+
+
+def positive(kind):
+    def convert(text):
+        try:
+            v = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError("'%s' is not a number" % text)
+        if not (math.isfinite(v) and v > 0):
+            raise argparse.ArgumentTypeError("'%s' must be positive" % text)
+        return v
+    return convert
+
+
+def check_setup(args):
+    """The build holds an executable yarn-impact, and --out is a folder that
+    can be written (created if missing)."""
+    if not os.path.isdir(args.build):
+        raise Failure("--build %s is not a folder (a build folder holding "
+                      "yarn-impact)" % args.build)
+    args.executable = os.path.join(os.path.abspath(args.build), "yarn-impact")
+    if not (os.path.isfile(args.executable) and
+            os.access(args.executable, os.X_OK)):
+        raise Failure("--build %s holds no executable yarn-impact (build it "
+                      "first, or name the build folder)" % args.build)
+    if os.path.exists(args.out) and not os.path.isdir(args.out):
+        raise Failure("--out %s exists and is not a folder" % args.out)
+    try:
+        os.makedirs(args.out, exist_ok=True)
+    except OSError as e:
+        raise Failure("--out %s cannot be created: %s"
+                      % (args.out, e.strerror or e))
+    if not os.access(args.out, os.W_OK | os.X_OK):
+        raise Failure("--out %s is not writable" % args.out)
+    args.executable_hash = sha256_file(args.executable)
+
+
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p = Parser(description=__doc__.split("\n")[0])
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
     p.add_argument("--out", default=os.path.join(ROOT, "results/ballistics"))
-    p.add_argument("--np", type=int, default=os.cpu_count() or 1)
-    p.add_argument("--models", default="charmetant,linear,dem")
-    p.add_argument("--velocities",
+    p.add_argument("--np", type=positive(int), default=os.cpu_count() or 1)
+    p.add_argument("--models", type=model_list,
+                   default="charmetant,linear,dem")
+    p.add_argument("--velocities", type=velocity_list,
                    default="60,120,200,300,450,600,800,1000,1200")
     # Fewer DEM points, each minutes long (doc/ballistics.md).
-    p.add_argument("--dem-velocities", default="300,450,600,1000")
-    p.add_argument("--end-time", type=float, default=40e-6)
-    p.add_argument("--tolerance", type=float, default=5.)
-    p.add_argument("--dem-tolerance", type=float, default=10.)
+    p.add_argument("--dem-velocities", type=velocity_list,
+                   default="300,450,600,1000")
+    p.add_argument("--end-time", type=positive(float), default=40e-6)
+    p.add_argument("--tolerance", type=positive(float), default=5.)
+    p.add_argument("--dem-tolerance", type=positive(float), default=10.)
     p.add_argument("--no-bisection", action="store_true")
     args = p.parse_args()
     args.out = os.path.abspath(args.out)
+    check_setup(args)
     t_r = reflection_time()
     smith = smith_critical_velocity()
     print("Smith's critical velocity (linear yarn, eps_b = %g): %.1f m/s; "
           "reflection time L/c = %.2f us" % (FAILURE_STRAIN, smith, t_r * 1e6))
     start = time.time()
     table, critical = {}, {}
-    for model in args.models.split(","):
+    for model in args.models:
         velocities = args.dem_velocities if model == "dem" else args.velocities
-        results = [run_case(args, model, float(v), args.end_time)
-                   for v in velocities.split(",")]
+        results = [run_case(args, model, v, args.end_time)
+                   for v in velocities]
         table[model] = results
         if not args.no_bisection:
             critical[model], lo, hi = bisect(args, model, results, t_r)
@@ -232,6 +397,17 @@ def main():
                   (model, "%.1f m/s" % critical[model]
                    if critical[model] else "not bracketed", lo, hi),
                   flush=True)
+    write_tables(args, table, critical, smith, t_r)
+    try:
+        plot(args, table, critical, smith)
+    except ImportError as e:
+        raise Failure("cannot draw the plots (%s); the tables are written"
+                      % e)
+    print("Wrote %s/ballistics.csv, critical_velocities.csv and 4 PNGs in "
+          "%.0f s" % (args.out, time.time() - start))
+
+
+def write_tables(args, table, critical, smith, t_r):
     with open(os.path.join(args.out, "ballistics.csv"), "w") as f:
         f.write("model,impact velocity [m/s],residual velocity [m/s],"
                 "energy absorbed [mJ],first break [us],cut through [us],"
@@ -248,10 +424,27 @@ def main():
         f.write("Smith (linear yarn),%.1f\n" % smith)
         for model, vc in critical.items():
             f.write("%s,%s\n" % (model, "" if vc is None else "%.1f" % vc))
-    plot(args, table, critical, smith)
-    print("Wrote %s/ballistics.csv, critical_velocities.csv and 4 PNGs in "
-          "%.0f s" % (args.out, time.time() - start))
+
+
+def entry():
+    """main() with every failure on one line, never a traceback."""
+    try:
+        return main()
+    except Failure as e:
+        sys.stderr.write("%s: error: %s\n" % (PROG, e))
+        return 1
+    except KeyboardInterrupt:
+        sys.stderr.write("%s: error: interrupted\n" % PROG)
+        return 130
+    except OSError as e:
+        sys.stderr.write("%s: error: %s%s\n" % (
+            PROG, e.strerror or e,
+            ": " + e.filename if getattr(e, "filename", None) else ""))
+        return 1
+    except Exception as e:  # never a traceback
+        sys.stderr.write("%s: error: %s: %s\n" % (PROG, type(e).__name__, e))
+        return 1
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(entry())

@@ -24,6 +24,10 @@ pressure of the distortion CSV) is weighted by its own RMS stress, so that
 the GPa of tension does not drown the MPa of the section. Prints the constants with their standard errors (from the
 Jacobian at the optimum), the residual of each test, and the constants
 fitted to each test alone.
+
+A bad argument or CSV (missing, unreadable, not a CSV, a column missing or
+not a number, no usable rows) gives one line "identify_charmetant.py:
+error: ..." and exit 2 (command line) or 1, never a traceback.
 """
 import argparse
 import csv
@@ -33,6 +37,12 @@ import sys
 
 import numpy as np
 from scipy.optimize import minimize_scalar, nnls
+
+PROG = os.path.basename(__file__)
+
+
+class Failure(Exception):
+    """A bad argument or file: one line, exit code 1."""
 
 
 def invariants(F):
@@ -143,16 +153,74 @@ def short_name(path):
     return folder + "/" + os.path.basename(path)
 
 
+NEEDED = {"tension": ["loading", "broken_fibres", "F_xx", "F_yy", "F_yz",
+                       "F_zy", "F_zz", "tau_xx", "tau_yy", "tau_yz",
+                       "tau_zz"],
+          "other": ["loading", "phase", "confining_pressure",
+                    "imposed_strain", "F_xx", "F_yy", "F_yz", "F_zy", "F_zz",
+                    "tau_xx", "tau_yy", "tau_yz", "tau_zz"]}
+NUMBERS = ["broken_fibres", "confining_pressure", "imposed_strain", "F_xx",
+           "F_yy", "F_yz", "F_zy", "F_zz", "tau_xx", "tau_yy", "tau_yz",
+           "tau_zz"]
+
+
+def read_csv(path):
+    """The rows of an elementary-test CSV, checked: every column the fit
+    reads is there and every number is finite. Raises Failure."""
+    if os.path.isdir(path):
+        raise Failure("%s is a folder, not a CSV of an elementary test" % path)
+    try:
+        with open(path, newline="") as f:
+            text = f.read()
+    except OSError as e:
+        raise Failure("cannot read %s: %s" % (path, e.strerror or e))
+    except UnicodeDecodeError:
+        raise Failure("%s is not a text CSV (binary data)" % path)
+    if "\0" in text:
+        raise Failure("%s is not a text CSV (binary data)" % path)
+    try:
+        rows = list(csv.DictReader(text.splitlines()))
+    except csv.Error as e:
+        raise Failure("%s is not a valid CSV: %s" % (path, e))
+    if not rows:
+        raise Failure("no rows in %s" % path)
+    loading = rows[0].get("loading")
+    if loading not in ("tension", "compaction", "distortion"):
+        raise Failure("%s is not a CSV of an elementary test (its 'loading' "
+                      "column is %s, not tension, compaction or distortion)"
+                      % (path, "missing" if loading is None
+                         else "'%s'" % loading))
+    needed = NEEDED["tension" if loading == "tension" else "other"]
+    missing = [c for c in needed if c not in rows[0]]
+    if missing:
+        raise Failure("%s lacks the column(s) %s" % (path, ", ".join(missing)))
+    for k, r in enumerate(rows):
+        if r.get("loading") != loading:
+            raise Failure("%s, row %d: loading '%s' in a %s test"
+                          % (path, k + 2, r.get("loading"), loading))
+        for c in needed:
+            if c in NUMBERS:
+                try:
+                    v = float(r[c])
+                except (TypeError, ValueError):
+                    raise Failure("%s, row %d: %s = '%s' is not a number"
+                                  % (path, k + 2, c, r[c]))
+                if not math.isfinite(v):
+                    raise Failure("%s, row %d: %s = %s is not finite"
+                                  % (path, k + 2, c, r[c]))
+    return rows
+
+
 def read_groups(files):
     groups = []
     for path in files:
-        with open(path) as f:
-            rows = list(csv.DictReader(f))
-        if not rows:
-            sys.exit("identify_charmetant: no rows in " + path)
+        rows = read_csv(path)
         loading = rows[0]["loading"]
         if loading == "tension":
-            used = [r for r in rows if int(r["broken_fibres"]) == 0]
+            used = [r for r in rows if float(r["broken_fibres"]) == 0]
+            if not used:
+                raise Failure("%s: no tension row before the first fibre "
+                              "break" % path)
             groups.append(Group(short_name(path), used, ["xx"]))
         else:
             pressures = sorted({float(r["confining_pressure"]) for r in rows})
@@ -163,6 +231,11 @@ def read_groups(files):
                 name = short_name(path)
                 if pc > 0:
                     name += " p_c=%g MPa" % (pc * 1e-6)
+                if not used:
+                    raise Failure("%s: no loading row (phase load, imposed "
+                                  "strain > 0)%s" % (
+                                      path, " at p_c = %g Pa" % pc
+                                      if pc > 0 else ""))
                 groups.append(Group(name, used, ["dev", "mean", "yz"]))
     return groups
 
@@ -312,8 +385,39 @@ def plot(path, groups, theta):
     fig.savefig(path, dpi=120)
 
 
+class Parser(argparse.ArgumentParser):
+    """argparse with its errors on one line (no usage block), exit 2."""
+
+    def error(self, message):
+        sys.stderr.write("%s: error: %s (see --help)\n" % (PROG, message))
+        sys.exit(2)
+
+
+def expected_constants(text):
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            "'%s' is not four numbers k_e,k_tc,p,k_td" % text)
+    if len(values) != 4 or not all(math.isfinite(v) and v != 0
+                                   for v in values):
+        raise argparse.ArgumentTypeError(
+            "'%s' is not four finite non-zero numbers k_e,k_tc,p,k_td" % text)
+    return values
+
+
+def positive_float(text):
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError("'%s' is not a number" % text)
+    if not (math.isfinite(v) and v > 0):
+        raise argparse.ArgumentTypeError("'%s' must be positive" % text)
+    return v
+
+
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = Parser(description=__doc__.splitlines()[0])
     ap.add_argument("csv", nargs="+")
     ap.add_argument("--prm", help="write the FE case with the constants")
     ap.add_argument("--base", default=os.path.join(
@@ -322,14 +426,16 @@ def main():
     ap.add_argument("--directory", default="results/km2_120ms_fe_identified",
                     help="Output/Directory of the written .prm")
     ap.add_argument("--plot", help="PNG of the curves and the fit")
-    ap.add_argument("--expect", help="k_e,k_tc,p,k_td the fit must return "
+    ap.add_argument("--expect", type=expected_constants, help="k_e,k_tc,p,k_td the fit must return "
                     "(a test): exit 1 if any differs by more than --tolerance")
-    ap.add_argument("--tolerance", type=float, default=0.01,
+    ap.add_argument("--tolerance", type=positive_float, default=0.01,
                     help="relative tolerance of --expect")
     ap.add_argument("--each", action="store_true",
                     help="also fit each test alone")
     args = ap.parse_args()
 
+    if args.prm and not os.path.isfile(args.base):
+        raise Failure("--base %s is not a parameter file" % args.base)
     groups = read_groups(args.csv)
     theta, err, ssr, cond = fit(groups)
     names = ["k_e [MPa]", "k_tc [MPa]", "p [-]", "k_td [MPa]"]
@@ -352,14 +458,23 @@ def main():
             print("  %-48s k_e %.6g  k_tc %.4g  p %.4g  k_td %.4g MPa"
                   % (g.name, t[0] * 1e-6, t[1] * 1e-6, t[2], t[3] * 1e-6))
     if args.prm:
-        write_prm(args.prm, args.base, theta, args.directory,
-                  [os.path.basename(c) for c in args.csv])
+        try:
+            write_prm(args.prm, args.base, theta, args.directory,
+                      [os.path.basename(c) for c in args.csv])
+        except OSError as e:
+            raise Failure("cannot write %s from %s: %s"
+                          % (args.prm, args.base, e.strerror or e))
+        except UnicodeDecodeError:
+            raise Failure("--base %s is not a text parameter file" % args.base)
         print("wrote " + args.prm)
     if args.plot:
-        plot(args.plot, groups, theta)
+        try:
+            plot(args.plot, groups, theta)
+        except (OSError, ValueError) as e:
+            raise Failure("cannot write the plot %s: %s" % (args.plot, e))
         print("wrote " + args.plot)
     if args.expect:
-        expected = [float(v) for v in args.expect.split(",")]
+        expected = args.expect
         ok = True
         for name, v, e in zip(names, theta, expected):
             rel = abs(v / e - 1.0)
@@ -371,5 +486,20 @@ def main():
         sys.exit(0 if ok else 1)
 
 
+def entry():
+    """main() with every failure on one line, never a traceback."""
+    try:
+        return main()
+    except Failure as e:
+        sys.stderr.write("%s: error: %s\n" % (PROG, e))
+        return 1
+    except KeyboardInterrupt:
+        sys.stderr.write("%s: error: interrupted\n" % PROG)
+        return 130
+    except Exception as e:  # never a traceback
+        sys.stderr.write("%s: error: %s: %s\n" % (PROG, type(e).__name__, e))
+        return 1
+
+
 if __name__ == "__main__":
-    main()
+    sys.exit(entry())
