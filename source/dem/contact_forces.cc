@@ -1,7 +1,6 @@
 // The fibre-fibre contact forces of the DEM impact model: the listed pairs
 // and the mirror pairs (contacts with images in the symmetry planes), both
 // by the one pair kernel of contact_kernels.h.
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/contact_kernels.h>
 #include <yarn_impact/dem/forces.h>

@@ -1,6 +1,5 @@
 // The slabs of the DEM impact model on the MPI ranks, their ghost layers
 // and the locality checks that keep every contact within reach of a rank.
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/parameter_tools.h>

@@ -3,7 +3,6 @@
 // lives in its own file (doc/architecture.md lists them). Everything that
 // runs every step is a plain loop over contiguous arrays: no allocation,
 // maps or virtual calls.
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/impact_simulation.h>

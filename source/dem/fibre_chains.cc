@@ -1,6 +1,5 @@
 // The fibres of the DEM impact model as chains of spheres: layout, stations
 // and masses.
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/fibre_chains.h>
 

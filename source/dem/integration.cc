@@ -1,6 +1,5 @@
 // Velocity Verlet of the DEM impact model: the kick is applied lazily, fused
 // with the next drift (one pass over memory instead of two).
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/integration.h>
 

@@ -2,7 +2,6 @@
 // section 4): bins along x, a (y, z) cell grid per bin, the candidate
 // search with the single-precision filter, the exact test in double
 // precision, the mirror pairs and the carrying of the tangential history.
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/candidate_search.h>
 #include <yarn_impact/dem/neighbour_lists.h>

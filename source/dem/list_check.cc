@@ -1,6 +1,5 @@
 // The list check of the DEM impact model (a diagnostic): every contact
 // found by a sweep that knows nothing of the neighbour lists must be listed.
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/dem/contact_kernels.h>

@@ -1,7 +1,6 @@
 // The neighbour-list blocks of the DEM impact model: their ranges, halos,
 // rebuild criterion and which blocks are rebuilt when (doc/dem.md
 // section 4). The build itself is in list_build.cc.
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/neighbour_lists.h>
 

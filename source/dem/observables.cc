@@ -1,7 +1,6 @@
 // The observables of the DEM impact model for the history: energies,
 // failed trusses, strains, cut-through and the station profile (analysis
 // measures the wave fronts on it).
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/contact_kernels.h>
 #include <yarn_impact/dem/integration.h>

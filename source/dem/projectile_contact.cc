@@ -1,7 +1,6 @@
 // The contact of the rigid cylindrical projectile with the spheres of the
 // DEM impact model, by the law of DEM/Projectile contact law
 // (contact/contact_law.h).
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/contact/projectile_contact.h>
 #include <yarn_impact/core/projectile.h>

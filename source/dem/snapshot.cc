@@ -1,6 +1,5 @@
 // The VTU snapshots of the DEM impact model: one piece per rank, a record
 // on rank 0.
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/integration.h>
 #include <yarn_impact/dem/observables.h>

@@ -1,7 +1,6 @@
 // The DEM's critical time step from the springs it has now: twice the
 // largest eigenvalue of a sphere's own stiffness block over its mass
 // (doc/theory.md section 3.2).
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/stable_step.h>
 

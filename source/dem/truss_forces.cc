@@ -1,6 +1,5 @@
 // The truss forces of the DEM impact model (the fibres' axial stiffness)
 // and truss failure.
-#pragma GCC optimize("O3")
 
 #include <yarn_impact/dem/forces.h>
 #include <yarn_impact/dem/truss.h>
