@@ -629,17 +629,28 @@ namespace YarnImpact
                                       resolved.str());
             });
           }
-        // From here a SIGTERM or SIGINT stops the run at its next history
-        // row with a checkpoint (exit code 6).
+        // From here a SIGTERM or SIGINT stops the run within a few steps,
+        // an impact run with a checkpoint (exit code 6).
         Checkpoint::install_signal_handlers();
 
         if (parameters.elementary.loading != DEM::ElementaryLoading::none)
           {
-            const bool passed = DEM::run_elementary_test(parameters.shared,
-                                                         parameters.dem,
-                                                         parameters.elementary,
-                                                         MPI_COMM_WORLD,
-                                                         out);
+            bool passed = false;
+            try
+              {
+                passed = DEM::run_elementary_test(parameters.shared,
+                                                  parameters.dem,
+                                                  parameters.elementary,
+                                                  MPI_COMM_WORLD,
+                                                  out);
+              }
+            catch (const Interrupted &e)
+              {
+                // No checkpoint, so no --restart to advise.
+                if (is_root)
+                  std::cerr << "yarn-impact: stopped: " << e.what() << std::endl;
+                return 6;
+              }
             if (!passed)
               {
                 if (is_root)

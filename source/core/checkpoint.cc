@@ -6,6 +6,7 @@
 #include <boost/crc.hpp>
 
 #include <climits>
+#include <ctime>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -22,19 +23,36 @@ namespace YarnImpact
     namespace
     {
       volatile std::sig_atomic_t received = 0;
+      /** When the first signal came (CLOCK_MONOTONIC) [s]. */
+      volatile double received_at = 0.;
+
+      double
+      monotonic_seconds()
+      {
+        // clock_gettime is async-signal-safe (POSIX.1-2008).
+        timespec now{};
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+      }
 
       extern "C" void
       on_signal(int signal)
       {
         // A second signal while the first is still being handled ends the
-        // process as it would without the handler.
+        // process as it would without the handler; one within a second of
+        // the first is the same request delivered twice (Ctrl-C reaches
+        // mpirun and the ranks, and mpirun forwards it as SIGTERM; a
+        // scheduler signals mpirun and the ranks) and is ignored.
         if (received != 0)
           {
+            if (monotonic_seconds() - received_at < 1.)
+              return;
             std::signal(signal, SIG_DFL);
             std::raise(signal);
             return;
           }
-        received = signal;
+        received_at = monotonic_seconds();
+        received    = signal;
       }
     } // namespace
 
@@ -566,6 +584,53 @@ namespace YarnImpact
     signal_received()
     {
       return received;
+    }
+
+
+    SignalPoll::SignalPoll(const MPI_Comm communicator,
+                           const unsigned int period)
+      : period(std::max(1u, period))
+    {
+      int size = 1;
+      MPI_Comm_size(communicator, &size);
+      if (size > 1)
+        MPI_Comm_dup(communicator, &comm);
+    }
+
+
+    SignalPoll::~SignalPoll()
+    {
+      if (comm == MPI_COMM_NULL)
+        return;
+      // Every rank destroys its poll at the same point of the run (its
+      // end, or an exception thrown on every rank): the reduction in
+      // flight completes on all.
+      if (pending)
+        MPI_Wait(&request, MPI_STATUS_IGNORE);
+      MPI_Comm_free(&comm);
+    }
+
+
+    int
+    SignalPoll::poll()
+    {
+      if (comm == MPI_COMM_NULL)
+        return received;
+      if (++calls % period != 0)
+        return 0;
+      // The reduction started `period` calls ago has had that long to
+      // complete: waiting for it costs nothing, and every rank gets its
+      // result at the same call.
+      int agreed = 0;
+      if (pending)
+        {
+          MPI_Wait(&request, MPI_STATUS_IGNORE);
+          agreed = reduced;
+        }
+      local = received;
+      MPI_Iallreduce(&local, &reduced, 1, MPI_INT, MPI_MAX, comm, &request);
+      pending = true;
+      return agreed;
     }
 
 

@@ -423,6 +423,17 @@ namespace YarnImpact
       throw RunError(s.str());
     };
 
+    // The stop on a signal, after its checkpoint.
+    const auto stop_on = [&](const int signal) {
+      std::ostringstream s;
+      s << "the " << name << " run was stopped by "
+        << (signal == SIGINT ? "SIGINT" : "SIGTERM") << " at t = "
+        << schedule.time() * 1e6 << " us (step " << schedule.step()
+        << "); its state is saved in " << Checkpoint::info_file(dir, name);
+      throw Interrupted(s.str());
+    };
+    Checkpoint::SignalPoll signal_poll(communicator);
+
     while (!finished && schedule.running())
       {
         if (schedule.time_step_update_due())
@@ -448,8 +459,11 @@ namespace YarnImpact
               << " reached (the stable time step fell to " << h << " s)";
             fail(s.str());
           }
-        if (!std::isfinite(force) || !std::isfinite(projectile.velocity()))
+        if (!std::isfinite(force))
           fail("the contact force is not a number");
+        if (!std::isfinite(projectile.velocity()) ||
+            !std::isfinite(projectile.displacement()))
+          fail("the projectile's velocity or displacement is not a number");
 
         const bool snapshot_due = schedule.snapshot_due();
         if (schedule.history_due() || snapshot_due)
@@ -465,6 +479,11 @@ namespace YarnImpact
                 !std::isfinite(m.contact_energy) ||
                 !std::isfinite(m.dissipated_energy))
               fail("an energy is not a number (an inverted cell or a blow-up)");
+            if (!std::isfinite(row.projectile_kinetic_energy) ||
+                !std::isfinite(row.external_work) ||
+                !std::isfinite(row.energy_error))
+              fail("the projectile's energy, its work or the energy balance "
+                   "error is not a number");
             if (std::abs(row.energy_error) > p.time.energy_error_limit)
               {
                 std::ostringstream s;
@@ -523,15 +542,14 @@ namespace YarnImpact
                  t >= next_checkpoint - eps_t))
               write_checkpoint(false);
             if (due[0] != 0)
-              {
-                std::ostringstream s;
-                s << "the " << name << " run was stopped by "
-                  << (due[0] == SIGINT ? "SIGINT" : "SIGTERM")
-                  << " at t = " << t * 1e6 << " us (step " << schedule.step()
-                  << "); its state is saved in "
-                  << Checkpoint::info_file(dir, name);
-                throw Interrupted(s.str());
-              }
+              stop_on(due[0]);
+          }
+        // A signal between rows: agreed within a few steps, however long
+        // the history interval (the run's state is saved as it is).
+        if (const int signal = signal_poll.poll(); signal != 0)
+          {
+            write_checkpoint(false);
+            stop_on(signal);
           }
 
         if (verbose && is_root &&

@@ -3,6 +3,7 @@
 // its homogenised stress. The theory, the boundary conditions and the
 // checks are in doc/identification.md.
 #include <yarn_impact/contact/contact_law.h>
+#include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -84,11 +86,31 @@ namespace YarnImpact
       public:
         Recorder(PeriodicSegment &segment,
                  AppendFile *csv,
-                 const std::string &name)
+                 const std::string &name,
+                 const std::string &partial)
           : seg(segment)
           , csv(csv)
           , name(name)
+          , partial(partial)
+          , signal_poll(segment.comm)
         {}
+
+        /** One step of the segment; a SIGTERM or SIGINT (agreed by the
+         * ranks within a few steps) stops the test between two steps, its
+         * rows so far kept in the .partial file. */
+        void
+        step()
+        {
+          seg.step();
+          if (const int signal = signal_poll.poll(); signal != 0)
+            throw Interrupted(
+              "the elementary test (" + name + ") was stopped by " +
+              (signal == SIGINT ? "SIGINT" : "SIGTERM") + " at t = " +
+              std::to_string(seg.time * 1e6) + " us; its rows so far are in " +
+              partial +
+              " (the elementary tests write no checkpoints: run it again "
+              "to finish it)");
+        }
 
         Row
         record(const std::string &phase,
@@ -126,6 +148,22 @@ namespace YarnImpact
             }
           for (const double b : seg.break_strains())
             r.broken_fibres += (b >= 0.);
+          // Every checked quantity finite, or the test stops (on every rank:
+          // the sums are collective).
+          bool finite = std::isfinite(r.sums.kinetic) &&
+                        std::isfinite(r.sums.truss) &&
+                        std::isfinite(r.sums.contact) &&
+                        std::isfinite(r.sums.dissipated) &&
+                        std::isfinite(r.plate_load) &&
+                        std::isfinite(r.wall_load);
+          for (const double t : r.tau)
+            finite = finite && std::isfinite(t);
+          if (!finite)
+            throw RunError("the elementary test (" + name +
+                           ") blew up at t = " + std::to_string(r.time * 1e6) +
+                           " us (a non-finite energy, stress or wall load); "
+                           "reduce Elementary test/Strain rate or "
+                           "Time/Safety factor");
           // Every rank records (the sums are collective); rank 0 writes, and
           // a failed write stops all ranks alike.
           collective_output(seg.comm, [&] {
@@ -153,6 +191,8 @@ namespace YarnImpact
         PeriodicSegment &seg;
         AppendFile *csv;
         std::string name;
+        std::string partial;
+        Checkpoint::SignalPoll signal_poll;
         std::vector<Row> rows;
       };
 
@@ -197,7 +237,7 @@ namespace YarnImpact
                 if (seg.axial_strain >= t.max_strain)
                   break;
               }
-            seg.step();
+            rec.step();
           }
       }
 
@@ -246,7 +286,7 @@ namespace YarnImpact
                         k_n,
                         seg.dt,
                         v_max);
-                seg.step();
+                rec.step();
               }
           }
 
@@ -297,7 +337,7 @@ namespace YarnImpact
                     for (unsigned int k = 2; k < 4; ++k)
                       servo(W[k], pressure * seg.Lx * gy, k_n, seg.dt, v_max);
                   }
-                seg.step();
+                rec.step();
               }
           }
       }
@@ -348,7 +388,10 @@ namespace YarnImpact
       });
       const std::string name =
         elementary_test_file(test.loading).substr(11, std::string::npos);
-      Recorder rec(seg, root ? &csv : nullptr, name.substr(0, name.size() - 4));
+      Recorder rec(seg,
+                   root ? &csv : nullptr,
+                   name.substr(0, name.size() - 4),
+                   partial);
 
       bool passed = true;
       auto check  = [&](const std::string &what, const bool ok) {

@@ -270,9 +270,12 @@ namespace YarnImpact
          std::string &state);
 
     /**
-     * Ask a run to stop with a checkpoint at its next history row on
-     * SIGTERM or SIGINT (a second signal ends the process at once, as
-     * without the handler).
+     * Ask a run to stop on SIGTERM or SIGINT: an impact run within a few
+     * steps, with a checkpoint (SignalPoll); an elementary test within a
+     * few steps, without. A second signal more than a second after the
+     * first ends the process at once, as without the handler; one within
+     * a second is the same request delivered twice (mpirun forwards a
+     * Ctrl-C that also reached the ranks) and is ignored.
      */
     void
     install_signal_handlers();
@@ -281,6 +284,41 @@ namespace YarnImpact
      * SIGINT), or 0. */
     int
     signal_received();
+
+    /**
+     * The signal received by any rank of a communicator, agreed by all
+     * ranks at the same step without a blocking reduction per step. Each
+     * rank calls poll() once per step. One rank: the signal flag, read at
+     * every call. Several ranks: every `period` calls a non-blocking
+     * MPI_Iallreduce of the ranks' flags is started and the one started
+     * `period` calls before is completed, so that a signal is agreed at
+     * most 2 `period` steps after it came, on every rank at the same call,
+     * at the cost of one small reduction that has had `period` steps to
+     * complete.
+     */
+    class SignalPoll
+    {
+    public:
+      explicit SignalPoll(const MPI_Comm communicator,
+                          const unsigned int period = 4);
+      ~SignalPoll();
+      SignalPoll(const SignalPoll &) = delete;
+      SignalPoll &
+      operator=(const SignalPoll &) = delete;
+
+      /** The agreed signal (SIGTERM, SIGINT), or 0; the same on every rank
+       * at the same call. Collective every `period` calls. */
+      int
+      poll();
+
+    private:
+      MPI_Comm comm = MPI_COMM_NULL; ///< own duplicate; none on one rank
+      unsigned int period;
+      unsigned long calls = 0;
+      MPI_Request request = MPI_REQUEST_NULL;
+      bool pending        = false;
+      int local = 0, reduced = 0;
+    };
 
     namespace internal
     {

@@ -28,8 +28,9 @@ namespace YarnImpact
 
   /**
    * The run was asked to stop by a signal (SIGTERM, SIGINT) and stopped
-   * at a history row after writing a checkpoint; the message says when
-   * and where. The program exits with code 6.
+   * within a few steps, after writing a checkpoint (an elementary test:
+   * without); the message says when and where. The program exits with
+   * code 6.
    */
   class Interrupted : public std::runtime_error
   {
@@ -134,8 +135,8 @@ namespace YarnImpact
      * snapshots and their PVD record into the output directory.
      * With Output/Checkpoint interval or Output/Checkpoint wall-clock
      * interval, writes checkpoints at history rows; after a SIGTERM or
-     * SIGINT (Checkpoint::install_signal_handlers()), writes one at the
-     * next history row and throws Interrupted. With
+     * SIGINT (Checkpoint::install_signal_handlers()), writes one within a
+     * few steps (Checkpoint::SignalPoll) and throws Interrupted. With
      * CheckpointOptions::restart, continues from the model's checkpoint.
      * @throws RunError on a numerical blow-up (after keeping the last good
      * snapshot and the history up to it)
