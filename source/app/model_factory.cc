@@ -7,7 +7,9 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <limits>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -56,15 +58,64 @@ namespace YarnImpact
   }
 
 
+  namespace
+  {
+    /**
+     * What the periodic segment of an elementary test allocates: every rank
+     * holds the positions, velocities, accelerations and exchange buffers
+     * of all spheres (about 400 B each, counted once per rank) and the
+     * neighbour lists and contact histories of its own (about 600 B each,
+     * measured: 0.8 GB for 800 000 spheres on one rank). Refused with the
+     * parameter that makes it large, also where the segment would not fit
+     * an MPI message (6 doubles a sphere, counted in an int).
+     */
+    MemoryEstimate
+    elementary_memory_estimate(const AllParameters &p,
+                               const unsigned int n_ranks)
+    {
+      MemoryEstimate e;
+      const double fibres   = p.shared.yarn.n_fibres;
+      const double sections = p.elementary.stations;
+      e.n_elements          = fibres * sections;
+      e.bytes        = (400. * n_ranks + 600.) * e.n_elements;
+      e.element_name = "spheres";
+      e.parameter    = (fibres / 400. >= sections / 4. ?
+                          "Yarn/Number of fibres" :
+                          "Elementary test/Cross-sections");
+      if (6. * e.n_elements > double(std::numeric_limits<int>::max()))
+        {
+          std::ostringstream s;
+          s.precision(3);
+          s << "Parameter '" << e.parameter
+            << "' makes the elementary test's segment " << e.n_elements
+            << " spheres, more than one MPI message can exchange ("
+            << std::numeric_limits<int>::max() / 6 << ").";
+          throw InputError(s.str());
+        }
+      return e;
+    }
+  } // namespace
+
+
   void
   check_memory_of_models(const AllParameters &p,
                          const bool print,
                          std::ostream &out)
   {
-    if (p.elementary.loading != DEM::ElementaryLoading::none)
-      return;
     const auto model = p.model;
     std::vector<std::string> lines;
+    if (p.elementary.loading != DEM::ElementaryLoading::none)
+      {
+        lines.push_back(check_memory(
+          elementary_memory_estimate(
+            p, dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)),
+          "elementary",
+          MPI_COMM_WORLD));
+        if (print &&
+            dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+          out << lines.back() << '\n';
+        return;
+      }
     if (model == ModelType::hybrid)
       lines.push_back(
         check_memory(Coupling::memory_estimate(p.shared, p.fe, p.dem, p.hybrid),

@@ -349,6 +349,30 @@ namespace YarnImpact
           hooks.report_setup(*model, is_root ? out.get_stream() : setup_sink);
       }
 
+    const auto fail = [&](const std::string &cause) {
+      std::ostringstream s;
+      s << "numerical failure in the " << name << " model at step "
+        << schedule.step() << ", t = " << schedule.time() * 1e6
+        << " us: " << cause
+        << ". The last good snapshot and the history up to it are kept in "
+        << p.output.directory << ".";
+      throw RunError(s.str());
+    };
+    // Every energy of a row finite before it is written, or the run stops.
+    const auto check_finite = [&](const HistoryRow &row) {
+      const auto &m = row.model;
+      if (!std::isfinite(m.kinetic_energy) ||
+          !std::isfinite(m.elastic_energy) ||
+          !std::isfinite(m.contact_energy) ||
+          !std::isfinite(m.dissipated_energy))
+        fail("an energy is not a number (an inverted cell or a blow-up)");
+      if (!std::isfinite(row.projectile_kinetic_energy) ||
+          !std::isfinite(row.external_work) || !std::isfinite(row.energy_error))
+        fail("the projectile's kinetic energy, its work or the energy "
+             "balance error is not a finite number (Projectile/Mass or "
+             "Projectile/Impact velocity too large?)");
+    };
+
     RunResult result;
     std::string stop_reason = "end time reached";
     double force            = 0.;
@@ -378,7 +402,11 @@ namespace YarnImpact
                            r0.model.kinetic_energy + r0.model.elastic_energy +
                            r0.model.contact_energy;
         }
-        add_history_row(make_row(0., 0, schedule.time_step(), force));
+        {
+          const auto row0 = make_row(0., 0, schedule.time_step(), force);
+          check_finite(row0);
+          add_history_row(row0);
+        }
         if (schedule.snapshots_on())
           {
             TimerOutput::Scope scope(timer, "output");
@@ -411,16 +439,6 @@ namespace YarnImpact
         completed,
         checkpoint_state(schedule, force, result, stop_reason));
       last_checkpoint = wall_timer.wall_time();
-    };
-
-    const auto fail = [&](const std::string &cause) {
-      std::ostringstream s;
-      s << "numerical failure in the " << name << " model at step "
-        << schedule.step() << ", t = " << schedule.time() * 1e6
-        << " us: " << cause
-        << ". The last good snapshot and the history up to it are kept in "
-        << p.output.directory << ".";
-      throw RunError(s.str());
     };
 
     // The stop on a signal, after its checkpoint.
@@ -474,16 +492,7 @@ namespace YarnImpact
               row = make_row(t, schedule.step(), h, force);
             }
             const auto &m = row.model;
-            if (!std::isfinite(m.kinetic_energy) ||
-                !std::isfinite(m.elastic_energy) ||
-                !std::isfinite(m.contact_energy) ||
-                !std::isfinite(m.dissipated_energy))
-              fail("an energy is not a number (an inverted cell or a blow-up)");
-            if (!std::isfinite(row.projectile_kinetic_energy) ||
-                !std::isfinite(row.external_work) ||
-                !std::isfinite(row.energy_error))
-              fail("the projectile's energy, its work or the energy balance "
-                   "error is not a number");
+            check_finite(row);
             if (std::abs(row.energy_error) > p.time.energy_error_limit)
               {
                 std::ostringstream s;
