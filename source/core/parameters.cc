@@ -117,11 +117,12 @@ namespace YarnImpact
         "How an FE cell fails (the DEM's trusses always break at once at "
         "the failure strain). sudden: the paper's criterion, a cell whose "
         "largest Gauss-point fibre strain passes the failure strain loses "
-        "all its stress in one step. progressive: from the failure strain "
-        "on, the fibre stress of the cell softens linearly with its fibre "
-        "strain down to zero, the slope set by Fracture energy and the "
-        "cell's length along the fibre (crack band), and the released "
-        "energy is counted as dissipated.");
+        "all its stress in one step. progressive: from Damage onset strain "
+        "on (grown across the thickness by Damage onset spread), the fibre "
+        "stress of the cell softens with its fibre strain down to zero, "
+        "linearly or with the tail of Softening tail stress, the slope set "
+        "by Fracture energy and the cell's length along the fibre (crack "
+        "band), and the released energy is counted as dissipated.");
       prm.declare_entry(
         "Damage onset strain",
         "0.0347",
