@@ -291,9 +291,10 @@ namespace YarnImpact
               std::string name;
               for (const auto &section : path)
                 name += section + "/";
-              name += trim(line.substr(4, eq == std::string::npos ?
-                                            std::string::npos :
-                                            eq - 4));
+              name +=
+                trim(line.substr(4,
+                                 eq == std::string::npos ? std::string::npos
+                                                         : eq - 4));
               entries[name] =
                 eq == std::string::npos ? "" : trim(line.substr(eq + 1));
             }
@@ -319,8 +320,8 @@ namespace YarnImpact
           if (it == a.end())
             differ.push_back(name + " (not in its parameters.prm)");
           else if (it->second != value)
-            differ.push_back(name + " ('" + it->second + "' there, '" +
-                             value + "' here)");
+            differ.push_back(name + " ('" + it->second + "' there, '" + value +
+                             "' here)");
         }
       for (const auto &[name, value] : a)
         if (name != "Output/Directory" && b.find(name) == b.end())
@@ -353,7 +354,8 @@ namespace YarnImpact
       bool in_use = false;
       if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
         std::tie(error, in_use) = lock_directory(lock, dir, false);
-      if (error.empty() && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      if (error.empty() &&
+          Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
         {
           namespace fs = std::filesystem;
           std::error_code ec;
@@ -486,9 +488,9 @@ namespace YarnImpact
       *files = input.files;
     if (!prm_format && extension != ".xml" && extension != ".json")
       throw InputError("the parameter file '" + file + "' has " +
-                       (extension.empty() ?
-                          std::string("no extension") :
-                          "an unknown extension '" + extension + "'") +
+                       (extension.empty()
+                          ? std::string("no extension")
+                          : "an unknown extension '" + extension + "'") +
                        ": name it .prm (or .xml, .json for deal.II's other "
                        "formats).");
     // deal.II names this file in its messages; each "Line <N> of file
@@ -508,29 +510,28 @@ namespace YarnImpact
       {
         std::ostringstream info;
         e.print_info(info);
-        std::string message = info.str();
+        std::string message    = info.str();
         const std::string tail = "> of file <" + placeholder + ">";
         for (std::size_t at = message.find(tail); at != std::string::npos;
-             at                = message.find(tail))
+             at             = message.find(tail))
           {
-            const std::size_t open = message.rfind("Line <", at);
-            unsigned long line     = 0;
-            if (open != std::string::npos)
+                        const std::size_t open = message.rfind("Line <", at);
+                        unsigned long line     = 0;
+                        if (open != std::string::npos)
               line = std::strtoul(message.c_str() + open + 6, nullptr, 10);
             if (open == std::string::npos || line == 0)
               {
-                message.replace(at, tail.size(), "> of file <" + file + ">");
-                continue;
+                            message.replace(at, tail.size(), "> of file <" + file + ">");
+                            continue;
               }
             const auto &origin =
-              line <= input.origin.size() ?
-                input.origin[line - 1] :
-                std::pair<std::size_t, unsigned int>(0, line);
-            message.replace(open,
+              line <= input.origin.size()
+                            ? input.origin[line - 1]
+                            : std::pair<std::size_t, unsigned int>(0, line);
+                        message.replace(open,
                             at + tail.size() - open,
                             "Line <" + std::to_string(origin.second) +
-                              "> of file <" + input.files[origin.first] +
-                              ">");
+                              "> of file <" + input.files[origin.first] + ">");
           }
         for (std::size_t at = message.find(placeholder);
              at != std::string::npos;
@@ -648,7 +649,8 @@ namespace YarnImpact
               {
                 // No checkpoint, so no --restart to advise.
                 if (is_root)
-                  std::cerr << "yarn-impact: stopped: " << e.what() << std::endl;
+                  std::cerr << "yarn-impact: stopped: " << e.what()
+                            << std::endl;
                 return 6;
               }
             if (!passed)

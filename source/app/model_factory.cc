@@ -77,11 +77,11 @@ namespace YarnImpact
       const double fibres   = p.shared.yarn.n_fibres;
       const double sections = p.elementary.stations;
       e.n_elements          = fibres * sections;
-      e.bytes        = (400. * n_ranks + 600.) * e.n_elements;
-      e.element_name = "spheres";
-      e.parameter    = (fibres / 400. >= sections / 4. ?
-                          "Yarn/Number of fibres" :
-                          "Elementary test/Cross-sections");
+      e.bytes               = (400. * n_ranks + 600.) * e.n_elements;
+      e.element_name        = "spheres";
+      e.parameter =
+        (fibres / 400. >= sections / 4. ? "Yarn/Number of fibres"
+                                        : "Elementary test/Cross-sections");
       if (6. * e.n_elements > double(std::numeric_limits<int>::max()))
         {
           std::ostringstream s;
@@ -107,8 +107,9 @@ namespace YarnImpact
     if (p.elementary.loading != DEM::ElementaryLoading::none)
       {
         lines.push_back(check_memory(
-          elementary_memory_estimate(
-            p, dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)),
+          elementary_memory_estimate(p,
+                                     dealii::Utilities::MPI::n_mpi_processes(
+                                       MPI_COMM_WORLD)),
           "elementary",
           MPI_COMM_WORLD));
         if (print &&

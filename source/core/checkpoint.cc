@@ -6,10 +6,10 @@
 #include <boost/crc.hpp>
 
 #include <climits>
-#include <ctime>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -271,11 +271,16 @@ namespace YarnImpact
       first_message(const MPI_Comm communicator, const std::string &local)
       {
         int failing =
-          local.empty() ?
-            INT_MAX :
-            static_cast<int>(
-              dealii::Utilities::MPI::this_mpi_process(communicator));
-        MPI_Allreduce(MPI_IN_PLACE, &failing, 1, MPI_INT, MPI_MIN, communicator);
+          local.empty()
+            ? INT_MAX
+            : static_cast<int>(
+                dealii::Utilities::MPI::this_mpi_process(communicator));
+        MPI_Allreduce(MPI_IN_PLACE,
+                      &failing,
+                      1,
+                      MPI_INT,
+                      MPI_MIN,
+                      communicator);
         if (failing == INT_MAX)
           return "";
         return dealii::Utilities::MPI::broadcast(communicator, local, failing);
@@ -309,8 +314,14 @@ namespace YarnImpact
         if (!why.empty())
           return why;
         std::vector<std::uint64_t> all(rank == 0 ? 2 * n_ranks : 0);
-        MPI_Gather(
-          mine, 2, MPI_UINT64_T, all.data(), 2, MPI_UINT64_T, 0, communicator);
+        MPI_Gather(mine,
+                   2,
+                   MPI_UINT64_T,
+                   all.data(),
+                   2,
+                   MPI_UINT64_T,
+                   0,
+                   communicator);
         if (rank == 0 && slot_checksum(all) != record.checksum)
           why = "'" + rank_file(directory, model, slot, 0) + "' to '" +
                 rank_file(directory, model, slot, n_ranks - 1) +
@@ -347,31 +358,30 @@ namespace YarnImpact
             pos = next + 1;
           }
         if (values.count("format") == 0 && values.count("info checksum") == 0)
-          return values.count("generation") > 0 ?
-                   "it is of checkpoint format 1, written by an earlier "
-                   "version of yarn-impact without checksums; this version "
-                   "reads format " +
-                     std::to_string(format) + " only" :
-                   "it holds no checkpoint record";
+          return values.count("generation") > 0
+                   ? "it is of checkpoint format 1, written by an earlier "
+                     "version of yarn-impact without checksums; this version "
+                     "reads format " +
+                       std::to_string(format) + " only"
+                   : "it holds no checkpoint record";
         // Every field is a whole number but the times.
-        const auto number = [&](const std::string &key,
-                                auto &value,
-                                const bool real = false) {
-          const auto it = values.find(key);
-          if (it == values.end() || it->second.empty())
-            return false;
-          char *end = nullptr;
-          errno     = 0;
-          if (real)
-            value = std::strtod(it->second.c_str(), &end);
-          else
-            {
-              if (it->second[0] == '-')
-                return false;
-              value = std::strtoull(it->second.c_str(), &end, 10);
-            }
-          return *end == '\0' && errno == 0;
-        };
+        const auto number =
+          [&](const std::string &key, auto &value, const bool real = false) {
+            const auto it = values.find(key);
+            if (it == values.end() || it->second.empty())
+              return false;
+            char *end = nullptr;
+            errno     = 0;
+            if (real)
+              value = std::strtod(it->second.c_str(), &end);
+            else
+              {
+                if (it->second[0] == '-')
+                  return false;
+                value = std::strtoull(it->second.c_str(), &end, 10);
+              }
+            return *end == '\0' && errno == 0;
+          };
         unsigned long long checksum = 0;
         if (end_of_text == std::string::npos ||
             !number("info checksum", checksum))
@@ -379,8 +389,9 @@ namespace YarnImpact
         if (checksum != crc32(text.data(), end_of_text))
           return "its checksum does not match its contents";
         unsigned long long fmt = 0, generation = 0, slot = 0, ranks = 0,
-                           step = 0, completed = 0, sum = 0, older_generation = 0,
-                           older_step = 0, older_completed = 0, older_sum = 0,
+                           step = 0, completed = 0, sum = 0,
+                           older_generation = 0, older_step = 0,
+                           older_completed = 0, older_sum = 0,
                            parameter_sum = 0;
         double time = 0., older_time = 0.;
         if (!number("format", fmt))
@@ -465,8 +476,14 @@ namespace YarnImpact
       });
       const std::uint64_t mine[2] = {crc, file.size()};
       std::vector<std::uint64_t> all(rank == 0 ? 2 * info.n_ranks : 0);
-      MPI_Gather(
-        mine, 2, MPI_UINT64_T, all.data(), 2, MPI_UINT64_T, 0, communicator);
+      MPI_Gather(mine,
+                 2,
+                 MPI_UINT64_T,
+                 all.data(),
+                 2,
+                 MPI_UINT64_T,
+                 0,
+                 communicator);
       if (rank == 0)
         info.checksum = slot_checksum(all);
       MPI_Bcast(&info.checksum, 1, MPI_UINT32_T, 0, communicator);
@@ -495,11 +512,10 @@ namespace YarnImpact
                  << "parameters checksum = " << parameters_checksum(directory)
                  << '\n';
             const std::string body = text.str();
-            write_file_atomically(info_file(directory, model),
-                                  body + "info checksum = " +
-                                    std::to_string(
-                                      crc32(body.data(), body.size())) +
-                                    '\n');
+            write_file_atomically(
+              info_file(directory, model),
+              body + "info checksum = " +
+                std::to_string(crc32(body.data(), body.size())) + '\n');
           }
       });
       return info;
@@ -555,8 +571,12 @@ namespace YarnImpact
       if (info.older.generation == 0)
         throw InputError(damaged +
                          "; there is no older checkpoint to continue from.");
-      const std::string older = verify_slot(
-        directory, model, communicator, info.older, 1 - info.slot, state);
+      const std::string older = verify_slot(directory,
+                                            model,
+                                            communicator,
+                                            info.older,
+                                            1 - info.slot,
+                                            state);
       if (!older.empty())
         throw InputError(damaged + "; so is the older one: " + older + ".");
       if (is_root)

@@ -308,8 +308,7 @@ namespace YarnImpact
     // run changes anything in the directory.
     std::string saved_state;
     if (checkpoints.restart)
-      checkpoint_info =
-        Checkpoint::read(dir, name, communicator, saved_state);
+      checkpoint_info = Checkpoint::read(dir, name, communicator, saved_state);
     const bool restarted = checkpoint_info.generation > 0;
     if (!restarted)
       collective_output(communicator, [&] {
@@ -379,11 +378,11 @@ namespace YarnImpact
     if (restarted)
       {
         TimerOutput::Scope scope(timer, "checkpoint");
-        Checkpoint::Reader in(Checkpoint::rank_file(
-          dir,
-          name,
-          checkpoint_info.slot,
-          Utilities::MPI::this_mpi_process(communicator)),
+        Checkpoint::Reader in(
+          Checkpoint::rank_file(dir,
+                                name,
+                                checkpoint_info.slot,
+                                Utilities::MPI::this_mpi_process(communicator)),
           std::move(saved_state));
         load_checkpoint(in, schedule, force, result, stop_reason);
         if (!testing)
@@ -445,9 +444,10 @@ namespace YarnImpact
     const auto stop_on = [&](const int signal) {
       std::ostringstream s;
       s << "the " << name << " run was stopped by "
-        << (signal == SIGINT ? "SIGINT" : "SIGTERM") << " at t = "
-        << schedule.time() * 1e6 << " us (step " << schedule.step()
-        << "); its state is saved in " << Checkpoint::info_file(dir, name);
+        << (signal == SIGINT ? "SIGINT" : "SIGTERM")
+        << " at t = " << schedule.time() * 1e6 << " us (step "
+        << schedule.step() << "); its state is saved in "
+        << Checkpoint::info_file(dir, name);
       throw Interrupted(s.str());
     };
     Checkpoint::SignalPoll signal_poll(communicator);

@@ -5,11 +5,10 @@
 #include <chrono>
 #include <csignal>
 #include <cstring>
-#include <sstream>
-#include <thread>
-
 #include <fcntl.h>
+#include <sstream>
 #include <sys/file.h>
+#include <thread>
 #include <unistd.h>
 
 namespace YarnImpact
@@ -50,7 +49,7 @@ namespace YarnImpact
       std::string found;
       for (unsigned int attempt = 0; attempt < 50; ++attempt)
         {
-          char text[512] = {};
+          char text[512]  = {};
           const ssize_t n = pread(descriptor, text, sizeof(text) - 1, 0);
           long pid        = 0;
           std::string host;
@@ -73,8 +72,8 @@ namespace YarnImpact
           std::this_thread::sleep_for(std::chrono::milliseconds(10));
         }
       return found.empty() ? std::string("a process that has not written "
-                                         "its name") :
-                             found;
+                                         "its name")
+                           : found;
     }
   } // namespace
 
@@ -97,14 +96,15 @@ namespace YarnImpact
   void
   OutputLock::acquire(const std::string &directory)
   {
-    const std::string file   = file_name(directory);
-    const std::string quoted = "Parameter 'Output/Directory' = '" +
-                               directory + "'";
+    const std::string file = file_name(directory);
+    const std::string quoted =
+      "Parameter 'Output/Directory' = '" + directory + "'";
     // Close-on-exec: a program started by the run must not inherit it.
     const int fd = open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0)
-      throw InputError(quoted + " cannot be used for output (cannot create "
-                                "its lock file '" +
+      throw InputError(quoted +
+                       " cannot be used for output (cannot create "
+                       "its lock file '" +
                        file + "': " + cause(errno) + ").");
     if (flock(fd, LOCK_EX | LOCK_NB) != 0)
       {

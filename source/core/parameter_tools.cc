@@ -2,16 +2,15 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace YarnImpact
 {
@@ -125,8 +124,8 @@ namespace YarnImpact
         else if (!S_ISREG(st.st_mode))
           why = not_regular;
         else if (static_cast<std::size_t>(st.st_size) > limit)
-          why = "it is larger than " + std::to_string(limit >> 20) +
-                " MiB (" + std::to_string(st.st_size) + " bytes)";
+          why = "it is larger than " + std::to_string(limit >> 20) + " MiB (" +
+                std::to_string(st.st_size) + " bytes)";
         if (why.empty())
           {
             contents.device = st.st_dev;
@@ -177,7 +176,7 @@ namespace YarnImpact
 
           std::vector<std::string> lines;
           {
-            std::size_t begin = 0;
+            std::size_t begin       = 0;
             const std::string &text = contents.text;
             while (begin < text.size())
               {
@@ -225,9 +224,8 @@ namespace YarnImpact
                   else if (logical == "end" || logical == "END")
                     --depth;
                   if (depth < 0 && !top)
-                    fail("an 'end' on line " + std::to_string(i + 1) +
-                         " of " + quote(name) +
-                         " closes a subsection it did not open");
+                    fail("an 'end' on line " + std::to_string(i + 1) + " of " +
+                         quote(name) + " closes a subsection it did not open");
                   for (unsigned int j = first; j <= i + 1; ++j)
                     add_line(lines[j - 1], index, j);
                 }
@@ -300,12 +298,11 @@ namespace YarnImpact
                 const std::string &from,
                 const unsigned int line)
         {
-          namespace fs           = std::filesystem;
-          const fs::path path    = target;
-          const std::string name = path.is_absolute() ?
-                                     target :
-                                     (fs::path(from).parent_path() / path)
-                                       .string();
+          namespace fs        = std::filesystem;
+          const fs::path path = target;
+          const std::string name =
+            path.is_absolute() ? target
+                               : (fs::path(from).parent_path() / path).string();
           const std::string at =
             " (line " + std::to_string(line) + " of " + quote(from) + ")";
           if (chain.size() >= max_include_depth)
@@ -318,8 +315,7 @@ namespace YarnImpact
           if (!why.empty())
             fail("cannot include " + quote(name) + ": " + why + at, name);
           for (const auto &link : chain)
-            if (link.device == contents.device &&
-                link.inode == contents.inode)
+            if (link.device == contents.device && link.inode == contents.inode)
               fail("an include cycle" + at, name);
           expand(name, contents);
         }

@@ -137,9 +137,8 @@ namespace YarnImpact
           l.clamp_trusses = clamp * l.cell_trusses;
           l.clamp_begin   = (K - l.clamp_trusses) * l.station_spacing;
           l.fe_cells      = fe_only - clamp + 2 * l.overlap_cells;
-          l.fe_end =
-            (K - l.clamp_trusses + l.overlap_cells * l.cell_trusses) *
-            l.station_spacing;
+          l.fe_end = (K - l.clamp_trusses + l.overlap_cells * l.cell_trusses) *
+                     l.station_spacing;
         }
       return l;
     }
@@ -255,7 +254,8 @@ namespace YarnImpact
       e.bytes += FE::memory_estimate(parts.fe_shared, parts.fe).bytes;
       if (l.clamp_cells > 0)
         {
-          const MemoryEstimate c = DEM::memory_estimate(shared, parts.dem_clamp);
+          const MemoryEstimate c =
+            DEM::memory_estimate(shared, parts.dem_clamp);
           e.bytes += c.bytes;
           e.n_elements += c.n_elements;
         }

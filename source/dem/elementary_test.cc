@@ -105,9 +105,9 @@ namespace YarnImpact
           if (const int signal = signal_poll.poll(); signal != 0)
             throw Interrupted(
               "the elementary test (" + name + ") was stopped by " +
-              (signal == SIGINT ? "SIGINT" : "SIGTERM") + " at t = " +
-              std::to_string(seg.time * 1e6) + " us; its rows so far are in " +
-              partial +
+              (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+              " at t = " + std::to_string(seg.time * 1e6) +
+              " us; its rows so far are in " + partial +
               " (the elementary tests write no checkpoints: run it again "
               "to finish it)");
         }
@@ -150,12 +150,10 @@ namespace YarnImpact
             r.broken_fibres += (b >= 0.);
           // Every checked quantity finite, or the test stops (on every rank:
           // the sums are collective).
-          bool finite = std::isfinite(r.sums.kinetic) &&
-                        std::isfinite(r.sums.truss) &&
-                        std::isfinite(r.sums.contact) &&
-                        std::isfinite(r.sums.dissipated) &&
-                        std::isfinite(r.plate_load) &&
-                        std::isfinite(r.wall_load);
+          bool finite =
+            std::isfinite(r.sums.kinetic) && std::isfinite(r.sums.truss) &&
+            std::isfinite(r.sums.contact) && std::isfinite(r.sums.dissipated) &&
+            std::isfinite(r.plate_load) && std::isfinite(r.wall_load);
           for (const double t : r.tau)
             finite = finite && std::isfinite(t);
           if (!finite)

@@ -72,7 +72,7 @@ namespace YarnImpact
             s_impact = 0;
             // Both clamp parts of the whole yarn (half symmetry).
             n_whole_stations = 2 * n_st;
-            x_begin  = 0.5 * y.length - (n_st - 1) * L0;
+            x_begin          = 0.5 * y.length - (n_st - 1) * L0;
           }
         if (coupled && (prm.station_weight.size() != n_st ||
                         prm.truss_weight.size() != n_st - 1))
@@ -85,8 +85,8 @@ namespace YarnImpact
             const double x   = x_begin + s * L0;
             const bool plane = x_sym && s == 0;
             const bool clamped =
-              clamp_part ? s == n_st - 1 :
-                           (!coupled && s == n_st - 1) || (!x_sym && s == 0);
+              clamp_part ? s == n_st - 1
+                         : (!coupled && s == n_st - 1) || (!x_sym && s == 0);
             const double weight = coupled ? prm.station_weight[s] : 1.;
             sx0.push_back(x);
             sw.push_back(plane ? 0.5 : 1.);

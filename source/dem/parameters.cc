@@ -321,9 +321,9 @@ namespace YarnImpact
       using YarnImpact::Parameters::Symmetry;
       const auto symmetry = shared.general.symmetry;
       const double modelled =
-        parameters.clamp_part_begin >= 0. ?
-          0.5 * shared.yarn.length - parameters.clamp_part_begin :
-          (symmetry == Symmetry::none ? 1. : 0.5) * shared.yarn.length;
+        parameters.clamp_part_begin >= 0.
+          ? 0.5 * shared.yarn.length - parameters.clamp_part_begin
+          : (symmetry == Symmetry::none ? 1. : 0.5) * shared.yarn.length;
       const double fibres =
         (symmetry == Symmetry::quarter ? 0.5 : 1.) * shared.yarn.n_fibres;
       MemoryEstimate e;

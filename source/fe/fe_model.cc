@@ -97,11 +97,10 @@ namespace YarnImpact
       n_stations = parameters.n_axial_cells / 2 * refinement_factor + 1;
       if (part)
         {
-          n_layers = parameters.layer_weight.size();
-          station_spacing =
-            (part_end - parameters.part_begin) / n_layers;
-          n_stations     = n_layers + 1;
-          station_origin = parameters.part_begin;
+          n_layers        = parameters.layer_weight.size();
+          station_spacing = (part_end - parameters.part_begin) / n_layers;
+          n_stations      = n_layers + 1;
+          station_origin  = parameters.part_begin;
         }
       cells_per_layer    = tria.n_global_active_cells() / n_layers;
       const double x_min = part      ? parameters.part_begin

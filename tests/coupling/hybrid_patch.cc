@@ -43,8 +43,8 @@ main(int argc, char **argv)
           hybrid.overlap_width    = w;
           hybrid.dem_half_length  = 2e-3 + w;
           hybrid.clamp_dem_length = clamp;
-          const double ghost      = Coupling::patch_test(
-            shared, fe, dem, hybrid, 1e-7, MPI_COMM_WORLD);
+          const double ghost =
+            Coupling::patch_test(shared, fe, dem, hybrid, 1e-7, MPI_COMM_WORLD);
           const bool ok = ghost <= 1e-4;
           passed        = passed && ok;
           if (root)
@@ -57,8 +57,8 @@ main(int argc, char **argv)
               verdicts << (ok ? "PASS" : "FAIL") << " patch test, overlap of "
                        << w * 1e3
                        << (clamp > 0. ? " mm, DEM parts at the nose and the "
-                                        "clamp (two overlaps)" :
-                                        " mm")
+                                        "clamp (two overlaps)"
+                                      : " mm")
                        << ": largest force on a degree of freedom under a "
                           "uniform stretch of 1e-7 <= 1e-4 of a fibre's "
                           "tension\n";
