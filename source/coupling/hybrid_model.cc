@@ -10,6 +10,7 @@
 #include <yarn_impact/coupling/bridging_domain.h>
 #include <yarn_impact/coupling/hybrid_model.h>
 #include <yarn_impact/coupling/hybrid_parts.h>
+#include <yarn_impact/coupling/overlap.h>
 #include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/fe/fe_model.h>
 #include <yarn_impact/fe/yarn_mesh.h>
@@ -34,34 +35,6 @@ namespace YarnImpact
     namespace
     {
       /**
-       * One overlap of the hybrid yarn: the DEM part it ties to the FE part,
-       * the constraint, and the work done through it.
-       */
-      struct Overlap
-      {
-        /** The DEM part (owned by the model). */
-        ImpactModel *dem = nullptr;
-        /** Reference x of its first node layer [m]. */
-        double x_begin = 0.;
-        /** The DEM part's stations it ties: [station_begin, station_end). */
-        unsigned int station_begin = 0, station_end = 0;
-
-        BridgingConstraint constraint;
-        /** Coupled FE nodes owned here: coupled index and local dofs. */
-        std::vector<std::pair<unsigned int, std::array<unsigned int, 3>>>
-          owned_nodes;
-        /** Work done by the continuum on the particles (the multipliers'
-         * power, summed), in the modelled part [J]. */
-        double work = 0.;
-        std::vector<double> node_force, particle_force, node_acceleration,
-          particle_acceleration, multipliers;
-        /** The overlap's node velocities [m/s], N^T lambda [N] and zeros,
-         * for the coupling's power. */
-        std::vector<double> node_velocity, node_multipliers, zero_node_force;
-      };
-
-
-      /**
        * The hybrid yarn: the parts, and the coupling applied after all
        * have computed their forces (doc/hybrid.md section 3).
        */
@@ -85,15 +58,15 @@ namespace YarnImpact
           fe_shared  = parts.fe_shared;
           fe_model   = FE::create_model(fe_shared, parts.fe, communicator);
           dem_model  = DEM::create_model(dem_shared, parts.dem, communicator);
-          nose.dem            = dem_model.get();
-          nose.x_begin        = layout.overlap_begin;
-          nose.station_begin  = layout.first_coupled_station;
-          nose.station_end    = layout.dem_trusses + 1;
+          nose.dem_part      = dem_model.get();
+          nose.x_begin       = layout.overlap_begin;
+          nose.station_begin = layout.first_coupled_station;
+          nose.station_end   = layout.dem_trusses + 1;
           if (layout.clamp_cells > 0)
             {
               clamp_model =
                 DEM::create_model(shared, parts.dem_clamp, communicator);
-              clamp.dem           = clamp_model.get();
+              clamp.dem_part      = clamp_model.get();
               clamp.x_begin       = layout.clamp_begin;
               clamp.station_begin = 0;
               clamp.station_end =
@@ -139,9 +112,9 @@ namespace YarnImpact
             throw RunError(
               "the projectile touches the DEM part at the clamp: lower "
               "Hybrid/Clamp DEM length");
-          couple(nose, dt);
+          nose.couple(*fe_model, dt, communicator);
           if (clamp_model)
-            couple(clamp, dt);
+            clamp.couple(*fe_model, dt, communicator);
           return f_fe + f_dem;
         }
 
@@ -243,17 +216,6 @@ namespace YarnImpact
         patch_test(const double strain);
 
       private:
-        /** Tie the overlap @p o: gather its nodes' and spheres' forces,
-         * and replace them by those that give each the coupled
-         * acceleration (BridgingConstraint). */
-        void
-        couple(Overlap &o, const double dt);
-
-        /** Find the overlap's FE nodes and spheres and build its
-         * constraint. */
-        void
-        set_up(Overlap &o, const Triangulation<2> &section);
-
         /** The overlaps in use: the one by the nose, and the one at the
          * clamp if there is a DEM part there. */
         std::vector<const Overlap *>
@@ -279,7 +241,6 @@ namespace YarnImpact
          * own; the clamp part's is @p shared). */
         YarnImpact::Parameters::Shared dem_shared, fe_shared;
         std::unique_ptr<ImpactModel> fe_model, dem_model, clamp_model;
-        unsigned int n_fibres = 0;
         Overlap nose, clamp;
       };
 
@@ -301,27 +262,25 @@ namespace YarnImpact
                                 fe_parameters.section_refinements,
                                 false,
                                 fe_parameters.preserve_section_area);
-        set_up(nose, section);
+        nose.set_up(*fe_model, section, layout, shared.yarn, communicator);
         if (clamp_model)
-          set_up(clamp, section);
+          clamp.set_up(*fe_model, section, layout, shared.yarn, communicator);
 
         if (Utilities::MPI::this_mpi_process(communicator) == 0)
           {
             out << "[hybrid] DEM part |x| <= " << layout.dem_half_length * 1e3
                 << " mm (" << layout.dem_trusses
-                << " trusses per fibre), overlap "
-                << layout.overlap_begin * 1e3 << " to "
-                << layout.dem_half_length * 1e3 << " mm ("
+                << " trusses per fibre), overlap " << layout.overlap_begin * 1e3
+                << " to " << layout.dem_half_length * 1e3 << " mm ("
                 << layout.overlap_cells << " FE cells of "
-                << layout.cell_length * 1e3
-                << " mm = " << layout.cell_trusses << " trusses), FE part to ";
+                << layout.cell_length * 1e3 << " mm = " << layout.cell_trusses
+                << " trusses), FE part to ";
             if (clamp_model)
               out << layout.fe_end * 1e3 << " mm in " << layout.fe_cells
                   << " cells; DEM part at the clamp from "
-                  << layout.clamp_begin * 1e3 << " mm ("
-                  << layout.clamp_trusses << " trusses per fibre), overlap "
-                  << layout.clamp_begin * 1e3 << " to "
-                  << layout.fe_end * 1e3 << " mm; ";
+                  << layout.clamp_begin * 1e3 << " mm (" << layout.clamp_trusses
+                  << " trusses per fibre), overlap " << layout.clamp_begin * 1e3
+                  << " to " << layout.fe_end * 1e3 << " mm; ";
             else
               out << "the clamp in " << layout.fe_cells << " cells; ";
             for (const Overlap *o : overlaps())
@@ -329,177 +288,6 @@ namespace YarnImpact
                   << o->constraint.n_particles() << " coupled spheres; ";
             out << "yarn mass " << mass() * 1e6 << " mg\n";
           }
-      }
-
-
-      void
-      HybridModel::set_up(Overlap &o, const Triangulation<2> &section)
-      {
-        const std::vector<Point<2>> &vertices = section.get_vertices();
-        const unsigned int n_vertices         = vertices.size();
-        const unsigned int n_layers           = layout.overlap_cells + 1;
-        const unsigned int n_coupled          = n_layers * n_vertices;
-        const double h                        = layout.cell_length;
-        const double size_tol = 1e-6 * std::min(shared.yarn.thickness_semi_axis,
-                                                shared.yarn.width_semi_axis);
-
-        // The owned FE nodes of the overlap's layers, by (layer, vertex).
-        const FE::CouplingView fe = FE::coupling_view(*fe_model);
-        std::vector<double> node_mass(n_coupled, 0.), found(n_coupled, 0.);
-        for (const auto &node : *fe.nodes)
-          {
-            const double x = (*fe.reference_coordinate)[node[0]];
-            const double j = (x - o.x_begin) / h;
-            if (j < -1e-6 || j > layout.overlap_cells + 1e-6)
-              continue;
-            const unsigned int layer = std::lround(j);
-            const Point<2> p((*fe.reference_coordinate)[node[1]],
-                             (*fe.reference_coordinate)[node[2]]);
-            unsigned int v = 0;
-            for (unsigned int k = 1; k < n_vertices; ++k)
-              if (p.distance(vertices[k]) < p.distance(vertices[v]))
-                v = k;
-            AssertThrow(p.distance(vertices[v]) < size_tol,
-                        ExcMessage("Hybrid: an FE node of the overlap is not "
-                                   "a vertex of the section"));
-            const unsigned int c = layer * n_vertices + v;
-            o.owned_nodes.push_back({c, node});
-            node_mass[c] = fe.mass[node[0]];
-            found[c]     = 1.;
-          }
-        Utilities::MPI::sum(node_mass, communicator, node_mass);
-        Utilities::MPI::sum(found, communicator, found);
-        for (unsigned int c = 0; c < n_coupled; ++c)
-          AssertThrow(found[c] == 1.,
-                      ExcMessage("Hybrid: an overlap node of the FE part is "
-                                 "missing or owned twice"));
-        o.constraint = BridgingConstraint(n_coupled);
-        for (unsigned int c = 0; c < n_coupled; ++c)
-          o.constraint.set_node_mass(c, node_mass[c]);
-
-        // The overlap's spheres: fibre f of station s is particle
-        // (s - station_begin) n_f + f, tied to the trilinear field at its
-        // reference position (the FE cells are extruded: linear in x times
-        // bilinear in the section).
-        const DEM::CouplingView dem = DEM::coupling_view(*o.dem);
-        n_fibres                    = dem.n_fibres;
-        std::vector<std::array<unsigned int, 4>> fibre_vertices(n_fibres);
-        std::vector<std::array<double, 4>> fibre_values(n_fibres);
-        for (unsigned int f = 0; f < n_fibres; ++f)
-          {
-            unsigned int cell;
-            locate_in_section(section,
-                              Point<2>((*dem.fibre_y)[f], (*dem.fibre_z)[f]),
-                              cell,
-                              fibre_vertices[f],
-                              fibre_values[f]);
-          }
-        for (unsigned int s = o.station_begin; s < o.station_end; ++s)
-          {
-            const double x = (*dem.station_x)[s];
-            const double t = (x - o.x_begin) / h;
-            const unsigned int cell =
-              std::min<unsigned int>(layout.overlap_cells - 1,
-                                     t <= 0. ? 0u : unsigned(std::floor(t)));
-            const double xi = std::clamp(t - cell, 0., 1.);
-            for (unsigned int f = 0; f < n_fibres; ++f)
-              {
-                std::vector<unsigned int> nodes;
-                std::vector<double> values;
-                for (unsigned int side = 0; side < 2; ++side)
-                  for (unsigned int v = 0; v < 4; ++v)
-                    {
-                      const double value =
-                        (side == 0 ? 1. - xi : xi) * fibre_values[f][v];
-                      if (value != 0.)
-                        {
-                          nodes.push_back((cell + side) * n_vertices +
-                                          fibre_vertices[f][v]);
-                          values.push_back(value);
-                        }
-                    }
-                o.constraint.add_particle(1. / dem.inverse_mass(s, f),
-                                          nodes,
-                                          values);
-              }
-          }
-        o.constraint.factorize();
-        const unsigned int n_p = o.constraint.n_particles();
-        o.node_force.assign(3 * n_coupled, 0.);
-        o.node_acceleration.assign(3 * n_coupled, 0.);
-        o.node_velocity.assign(3 * n_coupled, 0.);
-        o.node_multipliers.assign(3 * n_coupled, 0.);
-        o.zero_node_force.assign(3 * n_coupled, 0.);
-        o.particle_force.assign(3 * n_p, 0.);
-        o.particle_acceleration.assign(3 * n_p, 0.);
-        o.multipliers.assign(3 * n_p, 0.);
-        // The initial forces, as every step leaves them.
-        couple(o, 0.);
-      }
-
-
-      void
-      HybridModel::couple(Overlap &o, const double dt)
-      {
-        const FE::CouplingView fe   = FE::coupling_view(*fe_model);
-        const DEM::CouplingView dem = DEM::coupling_view(*o.dem);
-        std::fill(o.node_force.begin(), o.node_force.end(), 0.);
-        std::fill(o.particle_force.begin(), o.particle_force.end(), 0.);
-        // Gather: each entry has one owner and the others add zeros, so the
-        // sums are exact and the same on every rank and partition.
-        std::fill(o.node_velocity.begin(), o.node_velocity.end(), 0.);
-        for (const auto &[c, dofs] : o.owned_nodes)
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              o.node_force[3 * c + d]    = fe.force[dofs[d]];
-              o.node_velocity[3 * c + d] = fe.velocity[dofs[d]];
-            }
-        const unsigned int first   = o.station_begin;
-        const unsigned int s_begin = std::max(first, dem.station_begin);
-        const unsigned int s_end   = std::min(o.station_end, dem.station_end);
-        for (unsigned int s = s_begin; s < s_end; ++s)
-          for (unsigned int f = 0; f < n_fibres; ++f)
-            {
-              const std::size_t i = dem.local_index(s, f);
-              const std::size_t p = std::size_t(s - first) * n_fibres + f;
-              for (unsigned int d = 0; d < 3; ++d)
-                o.particle_force[3 * p + d] = dem.force[3 * i + d];
-            }
-        Utilities::MPI::sum(o.node_force, communicator, o.node_force);
-        Utilities::MPI::sum(o.node_velocity, communicator, o.node_velocity);
-        Utilities::MPI::sum(o.particle_force, communicator, o.particle_force);
-
-        o.constraint.accelerations(o.node_force.data(),
-                                   o.particle_force.data(),
-                                   o.node_acceleration.data(),
-                                   o.particle_acceleration.data(),
-                                   o.multipliers.data());
-        // The multipliers' power on the spheres, sum_i lambda_i . v_i: the
-        // constraints hold, so it is (N^T lambda) . v on the overlap's
-        // nodes, the same sum in the same order on every rank.
-        o.constraint.generalised_force(o.zero_node_force.data(),
-                                       o.multipliers.data(),
-                                       o.node_multipliers.data());
-        double power = 0.;
-        for (unsigned int k = 0; k < o.node_velocity.size(); ++k)
-          power += o.node_multipliers[k] * o.node_velocity[k];
-        o.work += dt * power;
-
-        // Scatter: the force that gives each its coupled acceleration
-        // through its own kick.
-        for (const auto &[c, dofs] : o.owned_nodes)
-          for (unsigned int d = 0; d < 3; ++d)
-            fe.force[dofs[d]] =
-              o.node_acceleration[3 * c + d] * fe.mass[dofs[d]];
-        for (unsigned int s = s_begin; s < s_end; ++s)
-          for (unsigned int f = 0; f < n_fibres; ++f)
-            {
-              const std::size_t i = dem.local_index(s, f);
-              const std::size_t p = std::size_t(s - first) * n_fibres + f;
-              const double m      = 1. / dem.inverse_mass(s, f);
-              for (unsigned int d = 0; d < 3; ++d)
-                dem.force[3 * i + d] = o.particle_acceleration[3 * p + d] * m;
-            }
       }
 
 
@@ -521,8 +309,7 @@ namespace YarnImpact
           for (ImpactModel *part : dem_parts)
             {
               const DEM::CouplingView dem = DEM::coupling_view(*part);
-              for (unsigned int s = dem.station_begin; s < dem.station_end;
-                   ++s)
+              for (unsigned int s = dem.station_begin; s < dem.station_end; ++s)
                 for (unsigned int f = 0; f < dem.n_fibres; ++f)
                   {
                     const std::size_t i = dem.local_index(s, f);
@@ -567,19 +354,20 @@ namespace YarnImpact
         if (clamp_model)
           {
             const DEM::CouplingView dem = DEM::coupling_view(*clamp_model);
-            for (unsigned int s = std::max(dem.station_begin,
-                                           clamp.station_end);
+            for (unsigned int s =
+                   std::max(dem.station_begin, clamp.station_end);
                  s < std::min(dem.station_end, dem.n_stations - 1);
                  ++s)
               for (unsigned int f = 0; f < dem.n_fibres; ++f)
                 for (unsigned int d = 0; d < 3; ++d)
-                  largest = std::max(
-                    largest,
-                    std::abs(dem.force[3 * dem.local_index(s, f) + d]));
+                  largest =
+                    std::max(largest,
+                             std::abs(
+                               dem.force[3 * dem.local_index(s, f) + d]));
           }
-        couple(nose, 0.);
+        nose.couple(*fe_model, 0., communicator);
         if (clamp_model)
-          couple(clamp, 0.);
+          clamp.couple(*fe_model, 0., communicator);
         for (const Overlap *o : overlaps())
           {
             std::vector<double> generalised(o->node_force.size());
@@ -613,22 +401,21 @@ namespace YarnImpact
               << " is within 10 % of Yarn/Failure strain "
               << shared.yarn.failure_strain
               << ": fibres would break outside the DEM part"
-              << (clamp_model ? "s" : "")
-              << "; raise Hybrid/DEM half-length"
-              << (clamp_model ? " or Hybrid/Clamp DEM length" :
-                                " (or set Hybrid/Clamp DEM length)");
+              << (clamp_model ? "s" : "") << "; raise Hybrid/DEM half-length"
+              << (clamp_model ? " or Hybrid/Clamp DEM length"
+                              : " (or set Hybrid/Clamp DEM length)");
             throw RunError(s.str());
           }
         Observables o;
-        o.kinetic_energy = a.kinetic_energy + b.kinetic_energy;
-        o.elastic_energy = a.elastic_energy + b.elastic_energy;
-        o.contact_energy = a.contact_energy + b.contact_energy;
+        o.kinetic_energy    = a.kinetic_energy + b.kinetic_energy;
+        o.elastic_energy    = a.elastic_energy + b.elastic_energy;
+        o.contact_energy    = a.contact_energy + b.contact_energy;
         o.dissipated_energy = a.dissipated_energy + b.dissipated_energy;
-        o.max_strain  = std::max(a.max_strain, b.max_strain);
-        o.n_failed    = b.n_failed;
-        o.n_eroded    = b.n_eroded;
-        o.n_damaged   = b.n_damaged;
-        o.cut_through = b.cut_through;
+        o.max_strain        = std::max(a.max_strain, b.max_strain);
+        o.n_failed          = b.n_failed;
+        o.n_eroded          = b.n_eroded;
+        o.n_damaged         = b.n_damaged;
+        o.cut_through       = b.cut_through;
         if (clamp_model)
           {
             o.kinetic_energy += c.kinetic_energy;
@@ -649,8 +436,8 @@ namespace YarnImpact
         const double middle =
           0.5 * (layout.overlap_begin + layout.dem_half_length);
         const double clamp_middle =
-          clamp_model ? 0.5 * (layout.clamp_begin + layout.fe_end) :
-                        std::numeric_limits<double>::infinity();
+          clamp_model ? 0.5 * (layout.clamp_begin + layout.fe_end)
+                      : std::numeric_limits<double>::infinity();
         StationProfile &p = o.profile;
         auto append = [&p](const StationProfile &q, const unsigned int k) {
           p.position.push_back(q.position[k]);
@@ -671,8 +458,7 @@ namespace YarnImpact
           }
         if (clamp_model)
           for (unsigned int k = 0; k < c.profile.size(); ++k)
-            if (layout.clamp_begin + k * layout.station_spacing >=
-                clamp_middle)
+            if (layout.clamp_begin + k * layout.station_spacing >= clamp_middle)
               append(c.profile, k);
         return o;
       }
@@ -688,8 +474,8 @@ namespace YarnImpact
         const std::string dem_record =
           dem_model->write_snapshot(directory, index, time);
         const std::string clamp_record =
-          clamp_model ? clamp_model->write_snapshot(directory, index, time) :
-                        std::string();
+          clamp_model ? clamp_model->write_snapshot(directory, index, time)
+                      : std::string();
         std::ostringstream name;
         name << "hybrid_" << std::setw(4) << std::setfill('0') << index
              << ".vtm";
@@ -709,8 +495,8 @@ namespace YarnImpact
                 << "\"/>\n"
                 << (clamp_model ? "    <DataSet index=\"2\" name=\"dem_clamp\" "
                                   "file=\"" +
-                                    clamp_record + "\"/>\n" :
-                                  std::string())
+                                    clamp_record + "\"/>\n"
+                                : std::string())
                 << "  </vtkMultiBlockDataSet>\n"
                 << "</VTKFile>\n";
               vtm.commit();

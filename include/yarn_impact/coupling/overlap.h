@@ -1,0 +1,76 @@
+#ifndef yarn_impact_coupling_overlap_h
+#define yarn_impact_coupling_overlap_h
+
+#include <yarn_impact/core/impact_model.h>
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/coupling/bridging_domain.h>
+#include <yarn_impact/coupling/hybrid_model.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <mpi.h>
+
+#include <array>
+#include <utility>
+#include <vector>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    /**
+     * One overlap of the hybrid yarn: the DEM part it ties to the FE part,
+     * the constraint, and the work done through it.
+     */
+    struct Overlap
+    {
+      /** The DEM part it ties (owned by the model). */
+      ImpactModel *dem_part = nullptr;
+      /** Reference x of its first node layer [m]. */
+      double x_begin = 0.;
+      /** The DEM part's stations it ties: [station_begin, station_end). */
+      unsigned int station_begin = 0, station_end = 0;
+
+      BridgingConstraint constraint;
+      /** Coupled FE nodes owned here: coupled index and local dofs. */
+      std::vector<std::pair<unsigned int, std::array<unsigned int, 3>>>
+        owned_nodes;
+      /** Work done by the continuum on the particles (the multipliers'
+       * power, summed), in the modelled part [J]. */
+      double work = 0.;
+      std::vector<double> node_force, particle_force, node_acceleration,
+        particle_acceleration, multipliers;
+      /** The overlap's node velocities [m/s], N^T lambda [N] and zeros,
+       * for the coupling's power. */
+      std::vector<double> node_velocity, node_multipliers, zero_node_force;
+      /** Fibres of the DEM part. */
+      unsigned int n_fibres = 0;
+
+      /**
+       * Find the overlap's nodes of the FE part @p fe_model (the vertices
+       * of @p section on the layout's node layers from x_begin) and the
+       * DEM part's spheres of [station_begin, station_end), build and
+       * factorise the constraint, and apply it once (collective).
+       */
+      void
+      set_up(ImpactModel &fe_model,
+             const dealii::Triangulation<2> &section,
+             const HybridLayout &layout,
+             const YarnImpact::Parameters::Yarn &yarn,
+             const MPI_Comm communicator);
+
+      /**
+       * Tie the overlap: gather its nodes' and spheres' forces, replace
+       * them by those that give each the coupled acceleration
+       * (BridgingConstraint), and add the multipliers' work over the
+       * step @p dt [s] (collective).
+       */
+      void
+      couple(ImpactModel &fe_model,
+             const double dt,
+             const MPI_Comm communicator);
+    };
+  } // namespace Coupling
+} // namespace YarnImpact
+
+#endif

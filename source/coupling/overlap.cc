@@ -1,0 +1,198 @@
+// One overlap of the hybrid yarn (doc/hybrid.md sections 2.2 and 3.1):
+// where its FE nodes and DEM spheres are, its constraint, and the step's
+// coupling.
+
+#include <yarn_impact/coupling/hybrid_parts.h>
+#include <yarn_impact/coupling/overlap.h>
+#include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/fe/fe_model.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    using namespace dealii;
+
+
+    void
+    Overlap::set_up(ImpactModel &fe_model,
+                    const Triangulation<2> &section,
+                    const HybridLayout &layout,
+                    const YarnImpact::Parameters::Yarn &yarn,
+                    const MPI_Comm communicator)
+    {
+      const std::vector<Point<2>> &vertices = section.get_vertices();
+      const unsigned int n_vertices         = vertices.size();
+      const unsigned int n_layers           = layout.overlap_cells + 1;
+      const unsigned int n_coupled          = n_layers * n_vertices;
+      const double h                        = layout.cell_length;
+      const double size_tol =
+        1e-6 * std::min(yarn.thickness_semi_axis, yarn.width_semi_axis);
+
+      // The owned FE nodes of the overlap's layers, by (layer, vertex).
+      const FE::CouplingView fe = FE::coupling_view(fe_model);
+      std::vector<double> node_mass(n_coupled, 0.), found(n_coupled, 0.);
+      for (const auto &node : *fe.nodes)
+        {
+          const double x = (*fe.reference_coordinate)[node[0]];
+          const double j = (x - x_begin) / h;
+          if (j < -1e-6 || j > layout.overlap_cells + 1e-6)
+            continue;
+          const unsigned int layer = std::lround(j);
+          const Point<2> p((*fe.reference_coordinate)[node[1]],
+                           (*fe.reference_coordinate)[node[2]]);
+          unsigned int v = 0;
+          for (unsigned int k = 1; k < n_vertices; ++k)
+            if (p.distance(vertices[k]) < p.distance(vertices[v]))
+              v = k;
+          AssertThrow(p.distance(vertices[v]) < size_tol,
+                      ExcMessage("Hybrid: an FE node of the overlap is not "
+                                 "a vertex of the section"));
+          const unsigned int c = layer * n_vertices + v;
+          owned_nodes.push_back({c, node});
+          node_mass[c] = fe.mass[node[0]];
+          found[c]     = 1.;
+        }
+      Utilities::MPI::sum(node_mass, communicator, node_mass);
+      Utilities::MPI::sum(found, communicator, found);
+      for (unsigned int c = 0; c < n_coupled; ++c)
+        AssertThrow(found[c] == 1.,
+                    ExcMessage("Hybrid: an overlap node of the FE part is "
+                               "missing or owned twice"));
+      constraint = BridgingConstraint(n_coupled);
+      for (unsigned int c = 0; c < n_coupled; ++c)
+        constraint.set_node_mass(c, node_mass[c]);
+
+      // The overlap's spheres: fibre f of station s is particle
+      // (s - station_begin) n_f + f, tied to the trilinear field at its
+      // reference position (the FE cells are extruded: linear in x times
+      // bilinear in the section).
+      const DEM::CouplingView dem = DEM::coupling_view(*dem_part);
+      n_fibres                    = dem.n_fibres;
+      std::vector<std::array<unsigned int, 4>> fibre_vertices(n_fibres);
+      std::vector<std::array<double, 4>> fibre_values(n_fibres);
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        {
+          unsigned int cell;
+          locate_in_section(section,
+                            Point<2>((*dem.fibre_y)[f], (*dem.fibre_z)[f]),
+                            cell,
+                            fibre_vertices[f],
+                            fibre_values[f]);
+        }
+      for (unsigned int s = station_begin; s < station_end; ++s)
+        {
+          const double x = (*dem.station_x)[s];
+          const double t = (x - x_begin) / h;
+          const unsigned int cell =
+            std::min<unsigned int>(layout.overlap_cells - 1,
+                                   t <= 0. ? 0u : unsigned(std::floor(t)));
+          const double xi = std::clamp(t - cell, 0., 1.);
+          for (unsigned int f = 0; f < n_fibres; ++f)
+            {
+              std::vector<unsigned int> nodes;
+              std::vector<double> values;
+              for (unsigned int side = 0; side < 2; ++side)
+                for (unsigned int v = 0; v < 4; ++v)
+                  {
+                    const double value =
+                      (side == 0 ? 1. - xi : xi) * fibre_values[f][v];
+                    if (value != 0.)
+                      {
+                        nodes.push_back((cell + side) * n_vertices +
+                                        fibre_vertices[f][v]);
+                        values.push_back(value);
+                      }
+                  }
+              constraint.add_particle(1. / dem.inverse_mass(s, f),
+                                      nodes,
+                                      values);
+            }
+        }
+      constraint.factorize();
+      const unsigned int n_p = constraint.n_particles();
+      node_force.assign(3 * n_coupled, 0.);
+      node_acceleration.assign(3 * n_coupled, 0.);
+      node_velocity.assign(3 * n_coupled, 0.);
+      node_multipliers.assign(3 * n_coupled, 0.);
+      zero_node_force.assign(3 * n_coupled, 0.);
+      particle_force.assign(3 * n_p, 0.);
+      particle_acceleration.assign(3 * n_p, 0.);
+      multipliers.assign(3 * n_p, 0.);
+      // The initial forces, as every step leaves them.
+      couple(fe_model, 0., communicator);
+    }
+
+
+    void
+    Overlap::couple(ImpactModel &fe_model,
+                    const double dt,
+                    const MPI_Comm communicator)
+    {
+      const FE::CouplingView fe   = FE::coupling_view(fe_model);
+      const DEM::CouplingView dem = DEM::coupling_view(*dem_part);
+      std::fill(node_force.begin(), node_force.end(), 0.);
+      std::fill(particle_force.begin(), particle_force.end(), 0.);
+      // Gather: each entry has one owner and the others add zeros, so the
+      // sums are exact and the same on every rank and partition.
+      std::fill(node_velocity.begin(), node_velocity.end(), 0.);
+      for (const auto &[c, dofs] : owned_nodes)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            node_force[3 * c + d]    = fe.force[dofs[d]];
+            node_velocity[3 * c + d] = fe.velocity[dofs[d]];
+          }
+      const unsigned int first   = station_begin;
+      const unsigned int s_begin = std::max(first, dem.station_begin);
+      const unsigned int s_end   = std::min(station_end, dem.station_end);
+      for (unsigned int s = s_begin; s < s_end; ++s)
+        for (unsigned int f = 0; f < n_fibres; ++f)
+          {
+            const std::size_t i = dem.local_index(s, f);
+            const std::size_t p = std::size_t(s - first) * n_fibres + f;
+            for (unsigned int d = 0; d < 3; ++d)
+              particle_force[3 * p + d] = dem.force[3 * i + d];
+          }
+      Utilities::MPI::sum(node_force, communicator, node_force);
+      Utilities::MPI::sum(node_velocity, communicator, node_velocity);
+      Utilities::MPI::sum(particle_force, communicator, particle_force);
+
+      constraint.accelerations(node_force.data(),
+                               particle_force.data(),
+                               node_acceleration.data(),
+                               particle_acceleration.data(),
+                               multipliers.data());
+      // The multipliers' power on the spheres, sum_i lambda_i . v_i: the
+      // constraints hold, so it is (N^T lambda) . v on the overlap's
+      // nodes, the same sum in the same order on every rank.
+      constraint.generalised_force(zero_node_force.data(),
+                                   multipliers.data(),
+                                   node_multipliers.data());
+      double power = 0.;
+      for (unsigned int k = 0; k < node_velocity.size(); ++k)
+        power += node_multipliers[k] * node_velocity[k];
+      work += dt * power;
+
+      // Scatter: the force that gives each its coupled acceleration
+      // through its own kick.
+      for (const auto &[c, dofs] : owned_nodes)
+        for (unsigned int d = 0; d < 3; ++d)
+          fe.force[dofs[d]] = node_acceleration[3 * c + d] * fe.mass[dofs[d]];
+      for (unsigned int s = s_begin; s < s_end; ++s)
+        for (unsigned int f = 0; f < n_fibres; ++f)
+          {
+            const std::size_t i = dem.local_index(s, f);
+            const std::size_t p = std::size_t(s - first) * n_fibres + f;
+            const double m      = 1. / dem.inverse_mass(s, f);
+            for (unsigned int d = 0; d < 3; ++d)
+              dem.force[3 * i + d] = particle_acceleration[3 * p + d] * m;
+          }
+    }
+  } // namespace Coupling
+} // namespace YarnImpact
