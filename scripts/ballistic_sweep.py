@@ -46,6 +46,8 @@ import subprocess
 import sys
 import time
 
+import folder_lock
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 # The paper's yarn (prm/km2_120ms_fe.prm; doc/theory.md).
@@ -288,44 +290,6 @@ def plot(args, table, critical, smith):
         plt.close(fig)
 
 
-# The lock this process holds on its output folder (kept open to the end).
-_held = []
-
-
-def hold_folder(folder, lock_name, what, option):
-    """Take an exclusive lock (fcntl.flock) on FOLDER/LOCK_NAME, held until
-    the process ends (the kernel releases it however the process ends); a
-    second process on the same folder is refused with one line naming the
-    folder and the holder's PID."""
-    import fcntl
-    import socket
-    path = os.path.join(folder, lock_name)
-    try:
-        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
-    except OSError as e:
-        raise Failure("%s %s: cannot create the lock %s: %s"
-                      % (option, folder, path, e.strerror or e))
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError:
-        try:
-            holder = os.pread(fd, 200, 0).decode(errors="replace").split()
-        except OSError:
-            holder = []
-        os.close(fd)
-        raise Failure("%s %s is in use by another %s: process %s on host %s "
-                      "holds its lock %s; wait for it to end, or choose "
-                      "another %s"
-                      % (option, folder, what,
-                         holder[0] if holder else "(starting)",
-                         holder[1] if len(holder) > 1 else "?", path,
-                         option))
-    os.ftruncate(fd, 0)
-    os.pwrite(fd, ("%d %s\n" % (os.getpid(), socket.gethostname())).encode(),
-              0)
-    _held.append(fd)
-
-
 class Parser(argparse.ArgumentParser):
     """argparse with its errors on one line (no usage block), exit 2."""
 
@@ -397,7 +361,8 @@ def check_setup(args):
     if not os.access(args.out, os.W_OK | os.X_OK):
         raise Failure("--out %s is not writable" % args.out)
     # One sweep per folder: its runs, keys and tables are this sweep's.
-    hold_folder(args.out, ".sweep.lock", "sweep", "--out")
+    folder_lock.hold_folder(args.out, ".sweep.lock", "sweep", "--out",
+                            Failure)
     args.executable_hash = sha256_file(args.executable)
 
 

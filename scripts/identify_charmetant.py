@@ -35,6 +35,7 @@ import math
 import os
 import sys
 
+import folder_lock
 import numpy as np
 from scipy.optimize import minimize_scalar, nnls
 
@@ -385,43 +386,8 @@ def plot(path, groups, theta):
     fig.savefig(path, dpi=120)
 
 
-# The lock this process holds on its output folder (kept open to the end).
-_held = []
+# The output folders this process holds (folder_lock).
 _folders = []
-
-
-def hold_folder(folder, lock_name, what, option):
-    """Take an exclusive lock (fcntl.flock) on FOLDER/LOCK_NAME, held until
-    the process ends (the kernel releases it however the process ends); a
-    second process on the same folder is refused with one line naming the
-    folder and the holder's PID."""
-    import fcntl
-    import socket
-    path = os.path.join(folder, lock_name)
-    try:
-        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
-    except OSError as e:
-        raise Failure("%s %s: cannot create the lock %s: %s"
-                      % (option, folder, path, e.strerror or e))
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError:
-        try:
-            holder = os.pread(fd, 200, 0).decode(errors="replace").split()
-        except OSError:
-            holder = []
-        os.close(fd)
-        raise Failure("%s %s is in use by another %s: process %s on host %s "
-                      "holds its lock %s; wait for it to end, or choose "
-                      "another %s"
-                      % (option, folder, what,
-                         holder[0] if holder else "(starting)",
-                         holder[1] if len(holder) > 1 else "?", path,
-                         option))
-    os.ftruncate(fd, 0)
-    os.pwrite(fd, ("%d %s\n" % (os.getpid(), socket.gethostname())).encode(),
-              0)
-    _held.append(fd)
 
 
 class Parser(argparse.ArgumentParser):
@@ -484,8 +450,9 @@ def main():
             raise Failure("%s %s: its folder %s does not exist"
                           % (option, target, folder))
         if folder not in _folders:
-            hold_folder(folder, ".identify.lock", "identification",
-                        "the folder of " + option)
+            folder_lock.hold_folder(folder, ".identify.lock",
+                                    "identification",
+                                    "the folder of " + option, Failure)
             _folders.append(folder)
     groups = read_groups(args.csv)
     theta, err, ssr, cond = fit(groups)
