@@ -214,5 +214,119 @@ namespace YarnImpact
                                particle_mass.capacity() + value.capacity()) +
              sizeof(unsigned int) * (row_start.capacity() + column.capacity());
     }
+
+
+    ChainConstraint::ChainConstraint(const unsigned int n_nodes)
+      : node_mass(n_nodes, 0.)
+    {}
+
+
+    void
+    ChainConstraint::set_node_mass(const unsigned int node, const double mass)
+    {
+      node_mass.at(node) = mass;
+      factorized         = false;
+    }
+
+
+    unsigned int
+    ChainConstraint::add_particle(const double mass,
+                                  const unsigned int node,
+                                  const double xi)
+    {
+      if (!(xi >= 0. && xi <= 1.) ||
+          node + (xi > 0. ? 1u : 0u) >= node_mass.size())
+        throw std::out_of_range("ChainConstraint::add_particle: particle "
+                                "outside the chain");
+      particle_mass.push_back(mass);
+      particle_node.push_back(node);
+      particle_xi.push_back(xi);
+      factorized = false;
+      return particle_mass.size() - 1;
+    }
+
+
+    void
+    ChainConstraint::factorize()
+    {
+      const unsigned int n = node_mass.size();
+      std::vector<double> diagonal(node_mass), off(n, 0.);
+      for (unsigned int i = 0; i < particle_mass.size(); ++i)
+        {
+          const double m = particle_mass[i], xi = particle_xi[i];
+          const unsigned int j = particle_node[i];
+          if (!(m >= 0.))
+            throw std::runtime_error("Chain constraint: particle " +
+                                     std::to_string(i) +
+                                     " has a negative or undefined mass");
+          diagonal[j] += m * (1. - xi) * (1. - xi);
+          if (xi > 0.)
+            {
+              diagonal[j + 1] += m * xi * xi;
+              off[j + 1] += m * xi * (1. - xi);
+            }
+        }
+      d.assign(n, 0.);
+      l.assign(n, 0.);
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          if (j > 0)
+            l[j] = off[j] / d[j - 1];
+          d[j] = diagonal[j] - (j > 0 ? l[j] * off[j] : 0.);
+          if (!(d[j] > 0.))
+            throw std::runtime_error("Chain constraint: K is not positive "
+                                     "definite at node " +
+                                     std::to_string(j) +
+                                     " (neither mass nor a particle there)");
+        }
+      factorized = true;
+    }
+
+
+    void
+    ChainConstraint::generalised_force(const double *node_force,
+                                       const double *particle_force,
+                                       double *out) const
+    {
+      std::copy(node_force, node_force + node_mass.size(), out);
+      for (unsigned int i = 0; i < particle_mass.size(); ++i)
+        {
+          const unsigned int j = particle_node[i];
+          const double xi      = particle_xi[i];
+          out[j] += (1. - xi) * particle_force[i];
+          if (xi > 0.)
+            out[j + 1] += xi * particle_force[i];
+        }
+    }
+
+
+    void
+    ChainConstraint::accelerations(const double *node_force,
+                                   const double *particle_force,
+                                   double *node_acceleration,
+                                   double *particle_acceleration,
+                                   double *constraint_force) const
+    {
+      if (!factorized)
+        throw std::logic_error("ChainConstraint: factorize() first");
+      const unsigned int n = node_mass.size();
+      double *a            = node_acceleration;
+      generalised_force(node_force, particle_force, a);
+      for (unsigned int j = 1; j < n; ++j)
+        a[j] -= l[j] * a[j - 1];
+      for (unsigned int j = 0; j < n; ++j)
+        a[j] /= d[j];
+      for (unsigned int j = n - 1; j-- > 0;)
+        a[j] -= l[j + 1] * a[j + 1];
+      for (unsigned int i = 0; i < particle_mass.size(); ++i)
+        {
+          const unsigned int j = particle_node[i];
+          const double xi      = particle_xi[i];
+          const double ai = (1. - xi) * a[j] + (xi > 0. ? xi * a[j + 1] : 0.);
+          particle_acceleration[i] = ai;
+          if (constraint_force != nullptr)
+            constraint_force[i] = particle_mass[i] * ai - particle_force[i];
+        }
+    }
   } // namespace Coupling
 } // namespace YarnImpact

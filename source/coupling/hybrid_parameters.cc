@@ -53,6 +53,28 @@ namespace YarnImpact
         "as in the DEM and may break there (doc/hybrid.md section 5.4); "
         "rounded to whole FE cells, longer than the overlap; 0: none, the "
         "FE part reaches the clamp [m].");
+      prm.declare_entry(
+        "Far field",
+        "continuum",
+        Patterns::Selection("continuum|fibre bars"),
+        "Model = hybrid: what carries the yarn outside the DEM part. "
+        "continuum: the identified FE continuum alone, every fibre tied to "
+        "its one motion in the overlap. fibre bars: the continuum for the "
+        "section's motion (compaction, distortion, deflection) and each "
+        "fibre as its own chain of bars between the FE node layers for the "
+        "axial motion, so that fibres slide along each other, carry their "
+        "own bar waves to and from the clamp, and may break there "
+        "(doc/hybrid.md section 3.4); needs FE/Constitutive law = "
+        "Charmetant and Clamp DEM length = 0.");
+      prm.declare_entry(
+        "Fibre bars per FE cell",
+        "0",
+        Patterns::Integer(0),
+        "Model = hybrid, Far field = fibre bars: bars of each fibre per FE "
+        "cell along the axis; 0: one per DEM truss, so that the fibres' bar "
+        "waves keep the DEM's resolution and the overlap ties each sphere "
+        "to one bar node (fewer bars are cheaper but reflect the short "
+        "waves the DEM part sends, doc/hybrid.md section 3.4) [-].");
       prm.leave_subsection();
     }
 
@@ -75,6 +97,8 @@ namespace YarnImpact
               "must be 0 (no DEM part at the clamp) or a positive length "
               "(got " +
                 prm.get("Clamp DEM length") + ")");
+      fibre_bars    = prm.get("Far field") == "fibre bars";
+      bars_per_cell = prm.get_integer("Fibre bars per FE cell");
       prm.leave_subsection();
     }
 
@@ -118,6 +142,9 @@ namespace YarnImpact
         l.dem_trusses - l.overlap_cells * l.cell_trusses;
       l.overlap_begin = l.first_coupled_station * l.station_spacing;
       l.fe_end        = half;
+      l.fibre_bars    = hybrid.fibre_bars;
+      l.bars_per_cell =
+        hybrid.bars_per_cell > 0 ? hybrid.bars_per_cell : l.cell_trusses;
       if (hybrid.clamp_dem_length > 0.)
         {
           const long clamp =
@@ -179,6 +206,13 @@ namespace YarnImpact
       p.fe.layer_weight.assign(l.fe_cells, 1.);
       for (unsigned int k = 0; k < l.overlap_cells; ++k)
         p.fe.layer_weight[k] = 1. - l.particle_weight(k);
+      // Under fibre bars the bars carry the fibres' axial stiffness: the
+      // continuum keeps the section's terms only.
+      if (l.fibre_bars)
+        {
+          p.fe.axial_modulus_from_fibres = false;
+          p.fe.charmetant.k_e            = 0.;
+        }
 
       // The DEM part at the clamp: the whole yarn's stations from x_c to
       // L/2, weighted in its overlap [x_c, x_c + w] as the mirror image of
@@ -222,6 +256,18 @@ namespace YarnImpact
               "must be 0 for Model = hybrid (the overlap's weights are per "
               "cell layer; refine with FE/Cells along the axis)");
       const HybridLayout l = hybrid_layout(shared, fe, dem, hybrid);
+      if (l.fibre_bars)
+        {
+          require(l.clamp_cells == 0,
+                  "Hybrid/Clamp DEM length",
+                  "must be 0 with Hybrid/Far field = fibre bars (the bars "
+                  "hold each fibre at the clamp)");
+          require(fe.law == FE::LawType::charmetant,
+                  "FE/Constitutive law",
+                  "must be Charmetant with Hybrid/Far field = fibre bars (the "
+                  "bars replace its fibre term 1/2 k_e I_e^2, which the "
+                  "linear transversely isotropic law does not separate)");
+        }
       std::ostringstream zone;
       zone << "leaves the DEM-only zone |x| < " << l.overlap_begin * 1e3
            << " mm (after rounding to whole FE cells) no wider than the "
@@ -238,7 +284,8 @@ namespace YarnImpact
       if (l.clamp_cells > 0)
         DEM::validate(shared, parts.dem_clamp);
       // The overlap's section quadrature must exist (positive weights).
-      section_quadrature(shared, fe, dem);
+      if (!l.fibre_bars)
+        section_quadrature(shared, fe, dem);
     }
 
 
@@ -259,6 +306,11 @@ namespace YarnImpact
           e.bytes += c.bytes;
           e.n_elements += c.n_elements;
         }
+      // The fibre bars: a few doubles per fibre and FE node layer, on
+      // every rank.
+      if (l.fibre_bars)
+        e.bytes +=
+          48. * shared.yarn.n_fibres * (l.fe_cells * l.bars_per_cell + 1);
       e.parameter = "Hybrid/DEM half-length";
       return e;
     }

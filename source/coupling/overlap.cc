@@ -116,6 +116,8 @@ namespace YarnImpact
             }
         }
       constraint.factorize();
+      if (bars != nullptr)
+        set_up_axial_ties(layout, dem);
       const unsigned int n_p = constraint.n_particles();
       node_force.assign(3 * n_coupled, 0.);
       node_acceleration.assign(3 * n_coupled, 0.);
@@ -168,6 +170,8 @@ namespace YarnImpact
                                node_acceleration.data(),
                                particle_acceleration.data(),
                                multipliers.data());
+      if (bars != nullptr)
+        work += dt * tie_axially();
       // The multipliers' power on the spheres, sum_i lambda_i . v_i: the
       // constraints hold, so it is (N^T lambda) . v on the overlap's
       // nodes, the same sum in the same order on every rank.
@@ -184,6 +188,10 @@ namespace YarnImpact
       for (const auto &[c, dofs] : owned_nodes)
         for (unsigned int d = 0; d < 3; ++d)
           fe.force[dofs[d]] = node_acceleration[3 * c + d] * fe.mass[dofs[d]];
+      // The continuum's axial motion is held under fibre bars.
+      if (bars != nullptr)
+        for (const auto &[c, dofs] : owned_nodes)
+          fe.force[dofs[0]] = 0.;
       for (unsigned int s = s_begin; s < s_end; ++s)
         for (unsigned int f = 0; f < n_fibres; ++f)
           {
@@ -193,6 +201,125 @@ namespace YarnImpact
             for (unsigned int d = 0; d < 3; ++d)
               dem.force[3 * i + d] = particle_acceleration[3 * p + d] * m;
           }
+    }
+
+
+    void
+    Overlap::set_up_axial_ties(const HybridLayout &layout,
+                               const DEM::CouplingView &dem)
+    {
+      // The overlap's bar nodes are the bars' first ones; sphere (s, f) is
+      // tied to fibre f's bar nodes at its reference x, linearly between
+      // the two around it (on one node when the bars are the DEM's
+      // trusses).
+      const unsigned int n_tied =
+        layout.overlap_cells * bars->bars_per_cell + 1;
+      const unsigned int n_stations = station_end - station_begin;
+      const double h_b              = layout.cell_length / bars->bars_per_cell;
+      fibre_constraints.assign(n_fibres, ChainConstraint(n_tied));
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        {
+          ChainConstraint &tie = fibre_constraints[f];
+          for (unsigned int j = 0; j < n_tied; ++j)
+            tie.set_node_mass(j, bars->mass[bars->index(f, j)]);
+          for (unsigned int s = station_begin; s < station_end; ++s)
+            {
+              const double t = ((*dem.station_x)[s] - x_begin) / h_b;
+              unsigned int j = std::lround(t);
+              double xi      = 0.;
+              if (std::abs(t - j) > 1e-9)
+                {
+                  j  = std::min<unsigned int>(n_tied - 2,
+                                             t <= 0. ? 0u : unsigned(t));
+                  xi = std::clamp(t - j, 0., 1.);
+                }
+              tie.add_particle(1. / dem.inverse_mass(s, f),
+                               std::min(j, n_tied - 1),
+                               xi);
+            }
+          tie.factorize();
+        }
+      bar_force.assign(n_tied, 0.);
+      bar_acceleration.assign(n_tied, 0.);
+      sphere_force.assign(n_stations, 0.);
+      sphere_acceleration.assign(n_stations, 0.);
+      sphere_multipliers.assign(n_stations, 0.);
+      gathered_bar_force.assign(std::size_t(n_fibres) * n_tied, 0.);
+    }
+
+
+    double
+    Overlap::largest_generalised_force() const
+    {
+      std::vector<double> generalised(node_force.size());
+      constraint.generalised_force(node_force.data(),
+                                   particle_force.data(),
+                                   generalised.data());
+      double largest = 0.;
+      // Under fibre bars the continuum's x is held and the bars take it.
+      for (unsigned int k = 0; k < generalised.size(); ++k)
+        if (bars == nullptr || k % 3 != 0)
+          largest = std::max(largest, std::abs(generalised[k]));
+      if (bars == nullptr)
+        return largest;
+      const unsigned int n_tied     = bar_force.size();
+      const unsigned int n_stations = station_end - station_begin;
+      std::vector<double> spheres(n_stations), out(n_tied);
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        {
+          for (unsigned int q = 0; q < n_stations; ++q)
+            spheres[q] = particle_force[3 * (std::size_t(q) * n_fibres + f)];
+          fibre_constraints[f].generalised_force(
+            &gathered_bar_force[std::size_t(f) * n_tied],
+            spheres.data(),
+            out.data());
+          for (const double g : out)
+            largest = std::max(largest, std::abs(g));
+        }
+      return largest;
+    }
+
+
+    double
+    Overlap::tie_axially()
+    {
+      const unsigned int n_tied     = bar_force.size();
+      const unsigned int n_stations = station_end - station_begin;
+      double power                  = 0.;
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        {
+          for (unsigned int j = 0; j < n_tied; ++j)
+            {
+              bar_force[j] = bars->force[bars->index(f, j)];
+              gathered_bar_force[std::size_t(f) * n_tied + j] = bar_force[j];
+            }
+          for (unsigned int q = 0; q < n_stations; ++q)
+            sphere_force[q] =
+              particle_force[3 * (std::size_t(q) * n_fibres + f)];
+          const ChainConstraint &tie = fibre_constraints[f];
+          tie.accelerations(bar_force.data(),
+                            sphere_force.data(),
+                            bar_acceleration.data(),
+                            sphere_acceleration.data(),
+                            sphere_multipliers.data());
+          for (unsigned int j = 0; j < n_tied; ++j)
+            {
+              const std::size_t i = bars->index(f, j);
+              bars->force[i]      = bar_acceleration[j] * bars->mass[i];
+            }
+          // The multipliers' power on the spheres, lambda . v: the
+          // constraints hold, so the spheres' velocities are the bars'
+          // interpolated.
+          tie.generalised_force(zero_force(n_tied),
+                                sphere_multipliers.data(),
+                                bar_force.data());
+          for (unsigned int q = 0; q < n_stations; ++q)
+            particle_acceleration[3 * (std::size_t(q) * n_fibres + f)] =
+              sphere_acceleration[q];
+          for (unsigned int j = 0; j < n_tied; ++j)
+            power += bar_force[j] * bars->velocity[bars->index(f, j)];
+        }
+      return power;
     }
   } // namespace Coupling
 } // namespace YarnImpact

@@ -174,6 +174,7 @@ namespace YarnImpact
           v.position      = spheres.pos.data();
           v.velocity      = spheres.vel.data();
           v.force         = spheres.frc.data();
+          v.broken        = spheres.broken.data();
           v.local_index   = [this](const unsigned int s, const unsigned int f) {
             return decomposition.local_index(s, f);
           };

@@ -35,6 +35,13 @@ namespace YarnImpact
        * [m]. */
       double clamp_dem_length = 0.;
 
+      /** The far field: the identified continuum alone (false), or the
+       * continuum's section motion with each fibre's own axial bars
+       * (true, `Far field = fibre bars`, doc/hybrid.md section 3.4). */
+      bool fibre_bars = false;
+      /** Fibre bars per FE cell; 0: one per DEM truss [-]. */
+      unsigned int bars_per_cell = 0;
+
       static void
       declare_parameters(dealii::ParameterHandler &prm);
       void
@@ -68,6 +75,10 @@ namespace YarnImpact
        * the FE part ends, x_c + w (L/2 without it) [m]. */
       unsigned int clamp_cells = 0, clamp_trusses = 0;
       double clamp_begin = 0., fe_end = 0.;
+      /** Whether the far field has fibre bars (HybridParameters), and how
+       * many per FE cell [-]. */
+      bool fibre_bars            = false;
+      unsigned int bars_per_cell = 0;
 
       /** Particle weight beta of overlap cell @p k (0 at a - w) [-]. */
       double

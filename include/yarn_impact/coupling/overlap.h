@@ -4,7 +4,9 @@
 #include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/coupling/bridging_domain.h>
+#include <yarn_impact/coupling/fibre_bars.h>
 #include <yarn_impact/coupling/hybrid_model.h>
+#include <yarn_impact/dem/dem_model.h>
 
 #include <deal.II/grid/tria.h>
 
@@ -47,6 +49,20 @@ namespace YarnImpact
       unsigned int n_fibres = 0;
 
       /**
+       * With a far field of fibre bars (owned by the model; null: the
+       * continuum's): the spheres' axial motion is tied to their own
+       * fibre's bars instead of the continuum (whose axial motion is then
+       * held), one constraint per fibre over the overlap's bar nodes
+       * (doc/hybrid.md section 3.4); y and z stay tied to the continuum.
+       */
+      FibreBars *bars = nullptr;
+      std::vector<ChainConstraint> fibre_constraints;
+      /** One fibre's bar node and sphere forces, accelerations and
+       * multipliers (one value each, the x component). */
+      std::vector<double> bar_force, bar_acceleration, sphere_force,
+        sphere_acceleration, sphere_multipliers, zeros;
+
+      /**
        * Find the overlap's nodes of the FE part @p fe_model (the vertices
        * of @p section on the layout's node layers from x_begin) and the
        * DEM part's spheres of [station_begin, station_end), build and
@@ -69,6 +85,37 @@ namespace YarnImpact
       couple(ImpactModel &fe_model,
              const double dt,
              const MPI_Comm communicator);
+
+      /** The largest generalised force of the coupled system on the
+       * overlap's nodes (continuum and, under fibre bars, bar nodes) from
+       * the forces the last couple() gathered [N]: zero in equilibrium
+       * (the patch test). */
+      double
+      largest_generalised_force() const;
+
+    private:
+      /** The bar nodes' forces of the overlap before the last tie, by
+       * fibre and node [N]. */
+      std::vector<double> gathered_bar_force;
+
+      /** Build and factorise the per-fibre axial constraints. */
+      void
+      set_up_axial_ties(const HybridLayout &layout,
+                        const DEM::CouplingView &dem);
+
+      /** Solve them: the bar nodes' and spheres' coupled axial
+       * accelerations (bars->force, particle_acceleration's x) from the
+       * gathered forces; returns the multipliers' power [W]. */
+      double
+      tie_axially();
+
+      /** @p n zeros. */
+      const double *
+      zero_force(const unsigned int n)
+      {
+        zeros.resize(n, 0.);
+        return zeros.data();
+      }
     };
   } // namespace Coupling
 } // namespace YarnImpact

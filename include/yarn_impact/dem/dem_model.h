@@ -7,6 +7,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -50,6 +51,9 @@ namespace YarnImpact
       /** Positions [m], velocities [m/s] and forces [N] of this rank's
        * spheres, indexed by local_index(). */
       double *position = nullptr, *velocity = nullptr, *force = nullptr;
+      /** Whether the truss from the sphere of local_index() to the next
+       * station's is broken (1) [-]. */
+      const std::uint8_t *broken = nullptr;
       /** Local index of the sphere of fibre @p f at station @p s (owned
        * stations only). */
       std::function<std::size_t(unsigned int s, unsigned int f)> local_index;

@@ -1,0 +1,351 @@
+// The far field of the hybrid yarn as fibres (doc/hybrid.md section 3.4):
+// each fibre a chain of bars between the FE part's node layers, axial
+// unknowns of its own, the continuum's transverse motion.
+
+#include <yarn_impact/coupling/fibre_bars.h>
+#include <yarn_impact/coupling/hybrid_parts.h>
+#include <yarn_impact/fe/fe_model.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    using namespace dealii;
+
+
+    void
+    FibreBars::set_up(ImpactModel &fe_model,
+                      const Triangulation<2> &section,
+                      const HybridLayout &layout,
+                      const YarnImpact::Parameters::Yarn &yarn,
+                      const std::vector<double> &fibre_y_,
+                      const std::vector<double> &fibre_z_,
+                      const bool failure_,
+                      const MPI_Comm communicator)
+    {
+      fibre_y        = fibre_y_;
+      fibre_z        = fibre_z_;
+      n_fibres       = fibre_y.size();
+      n_layers       = layout.fe_cells + 1;
+      bars_per_cell  = layout.bars_per_cell;
+      n_nodes        = bars_per_cell * layout.fe_cells + 1;
+      h              = layout.cell_length / bars_per_cell;
+      x_begin        = layout.overlap_begin;
+      failure        = failure_;
+      failure_strain = yarn.failure_strain;
+      const double area =
+        numbers::PI * 0.25 * yarn.fibre_diameter * yarn.fibre_diameter;
+      stiffness                   = yarn.fibre_modulus * area / h;
+      const double linear_density = yarn.fibre_density * area;
+
+      cell_weight.assign(layout.fe_cells, 1.);
+      for (unsigned int k = 0; k < layout.overlap_cells; ++k)
+        cell_weight[k] = 1. - layout.particle_weight(k);
+
+      const std::size_t n_all = std::size_t(n_fibres) * n_nodes;
+      displacement.assign(n_all, 0.);
+      velocity.assign(n_all, 0.);
+      force.assign(n_all, 0.);
+      strain.assign(n_all, 0.);
+      broken.assign(n_all, 0);
+      mass.assign(n_all, 0.);
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          {
+            double xi;
+            const double m =
+              0.5 * cell_weight[cell_of(j, xi)] * linear_density * h;
+            mass[index(f, j)] += m;
+            mass[index(f, j + 1)] += m;
+          }
+
+      // Where each fibre lies in the section.
+      fibre_vertices.resize(n_fibres);
+      fibre_values.resize(n_fibres);
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        {
+          unsigned int cell;
+          locate_in_section(section,
+                            Point<2>(fibre_y[f], fibre_z[f]),
+                            cell,
+                            fibre_vertices[f],
+                            fibre_values[f]);
+        }
+
+      // The owned FE nodes of the layers, by (layer, vertex).
+      const std::vector<Point<2>> &vertices = section.get_vertices();
+      n_vertices                            = vertices.size();
+      const double size_tol =
+        1e-6 * std::min(yarn.thickness_semi_axis, yarn.width_semi_axis);
+      const FE::CouplingView fe = FE::coupling_view(fe_model);
+      std::vector<double> found(n_layers * n_vertices, 0.);
+      owned_nodes.clear();
+      for (const auto &node : *fe.nodes)
+        {
+          const double t = ((*fe.reference_coordinate)[node[0]] - x_begin) /
+                           layout.cell_length;
+          const unsigned int layer = std::lround(t);
+          AssertThrow(t > -1e-6 && layer < n_layers &&
+                        std::abs(t - layer) < 1e-6,
+                      ExcMessage("Hybrid: an FE node is not on one of the "
+                                 "fibre bars' layers"));
+          const Point<2> p((*fe.reference_coordinate)[node[1]],
+                           (*fe.reference_coordinate)[node[2]]);
+          unsigned int v = 0;
+          for (unsigned int k = 1; k < n_vertices; ++k)
+            if (p.distance(vertices[k]) < p.distance(vertices[v]))
+              v = k;
+          AssertThrow(p.distance(vertices[v]) < size_tol,
+                      ExcMessage("Hybrid: an FE node is not a vertex of the "
+                                 "section"));
+          const unsigned int c = layer * n_vertices + v;
+          owned_nodes.push_back(
+            {c, std::array<unsigned int, 2>{{node[1], node[2]}}});
+          found[c] = 1.;
+        }
+      Utilities::MPI::sum(found, communicator, found);
+      for (const double x : found)
+        AssertThrow(x == 1.,
+                    ExcMessage("Hybrid: a node of the fibre bars' layers is "
+                               "missing from the FE part or owned twice"));
+      node_displacement.assign(2 * n_layers * n_vertices, 0.);
+      node_force.assign(2 * n_layers * n_vertices, 0.);
+      layer_displacement.assign(2 * n_layers, 0.);
+      layer_force.assign(2 * n_layers, 0.);
+      elastic = dissipated = largest = 0.;
+    }
+
+
+    void
+    FibreBars::kick(const double dt)
+    {
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        // The last node is held at the clamp.
+        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          {
+            const std::size_t i = index(f, j);
+            velocity[i] += dt * force[i] / mass[i];
+          }
+    }
+
+
+    void
+    FibreBars::drift(const double dt)
+    {
+      for (std::size_t i = 0; i < displacement.size(); ++i)
+        displacement[i] += dt * velocity[i];
+    }
+
+
+    void
+    FibreBars::compute_forces(ImpactModel &fe_model,
+                              const MPI_Comm communicator)
+    {
+      const FE::CouplingView fe = FE::coupling_view(fe_model);
+      // Gather: each entry has one owner and the others add zeros, so the
+      // sums are exact and the same on every rank.
+      std::fill(node_displacement.begin(), node_displacement.end(), 0.);
+      for (const auto &[c, dofs] : owned_nodes)
+        for (unsigned int d = 0; d < 2; ++d)
+          node_displacement[2 * c + d] = fe.displacement[dofs[d]];
+      Utilities::MPI::sum(node_displacement, communicator, node_displacement);
+
+      std::fill(force.begin(), force.end(), 0.);
+      std::fill(node_force.begin(), node_force.end(), 0.);
+      elastic = 0.;
+      largest = 0.;
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        {
+          const auto &vertex = fibre_vertices[f];
+          const auto &value  = fibre_values[f];
+          // The fibre's transverse displacement at each layer.
+          for (unsigned int k = 0; k < n_layers; ++k)
+            for (unsigned int d = 0; d < 2; ++d)
+              {
+                double s = 0.;
+                for (unsigned int v = 0; v < 4; ++v)
+                  s += value[v] *
+                       node_displacement[2 * (k * n_vertices + vertex[v]) + d];
+                layer_displacement[2 * k + d] = s;
+              }
+          std::fill(layer_force.begin(), layer_force.end(), 0.);
+          // Bar node j's transverse displacement, linear between layers.
+          auto transverse = [&](const unsigned int j,
+                                const unsigned int d,
+                                unsigned int &c,
+                                double &xi) {
+            c = cell_of(j, xi);
+            return (1. - xi) * layer_displacement[2 * c + d] +
+                   xi * layer_displacement[2 * (c + 1) + d];
+          };
+          unsigned int c0, c1;
+          double xi0, xi1;
+          double y0 = transverse(0, 0, c0, xi0), z0 = transverse(0, 1, c0, xi0);
+          for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+            {
+              const double y1     = transverse(j + 1, 0, c1, xi1),
+                           z1     = transverse(j + 1, 1, c1, xi1);
+              const std::size_t i = index(f, j);
+              const double e[3]   = {h + displacement[i + 1] - displacement[i],
+                                     y1 - y0,
+                                     z1 - z0};
+              const unsigned int ca = c0;
+              const double xa       = xi0;
+              y0                    = y1;
+              z0                    = z1;
+              c0                    = c1;
+              xi0                   = xi1;
+              strain[i]             = 0.;
+              if (broken[i])
+                continue;
+              const double l =
+                std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+              const double eps = l / h - 1.;
+              // The bar lies in the cell of its first node.
+              const double k_w = cell_weight[ca] * stiffness;
+              if (failure && eps > failure_strain)
+                {
+                  broken[i] = 1;
+                  dissipated += 0.5 * k_w * (l - h) * (l - h);
+                  continue;
+                }
+              strain[i] = eps;
+              largest   = std::max(largest, eps);
+              elastic += 0.5 * k_w * (l - h) * (l - h);
+              // The force on the bar's first node (the second gets its
+              // opposite), as a DEM truss; the transverse parts go to the
+              // layers by the nodes' linear shape values.
+              const double s = k_w * (l - h) / l;
+              force[i] += s * e[0];
+              force[i + 1] -= s * e[0];
+              for (unsigned int d = 0; d < 2; ++d)
+                {
+                  const double t = s * e[1 + d];
+                  layer_force[2 * ca + d] += (1. - xa) * t;
+                  layer_force[2 * (ca + 1) + d] += xa * t;
+                  layer_force[2 * c1 + d] -= (1. - xi1) * t;
+                  layer_force[2 * (c1 + 1) + d] -= xi1 * t;
+                }
+            }
+          for (unsigned int k = 0; k < n_layers; ++k)
+            for (unsigned int v = 0; v < 4; ++v)
+              for (unsigned int d = 0; d < 2; ++d)
+                node_force[2 * (k * n_vertices + vertex[v]) + d] +=
+                  value[v] * layer_force[2 * k + d];
+        }
+      for (const auto &[c, dofs] : owned_nodes)
+        for (unsigned int d = 0; d < 2; ++d)
+          fe.force[dofs[d]] += node_force[2 * c + d];
+    }
+
+
+    double
+    FibreBars::stable_time_step() const
+    {
+      // Gershgorin: omega^2 <= 2 sum of the adjacent bars' stiffness over
+      // the node's mass.
+      double rate2 = 0.;
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          {
+            double xi;
+            double k_sum = cell_weight[cell_of(j, xi)];
+            if (j > 0)
+              k_sum += cell_weight[cell_of(j - 1, xi)];
+            rate2 = std::max(rate2, 2. * stiffness * k_sum / mass[index(f, j)]);
+          }
+      return rate2 > 0. ? 2. / std::sqrt(rate2)
+                        : std::numeric_limits<double>::max();
+    }
+
+
+    double
+    FibreBars::kinetic_energy() const
+    {
+      double e = 0.;
+      for (std::size_t i = 0; i < velocity.size(); ++i)
+        e += 0.5 * mass[i] * velocity[i] * velocity[i];
+      return e;
+    }
+
+
+    unsigned long
+    FibreBars::n_broken() const
+    {
+      return std::count(broken.begin(), broken.end(), 1);
+    }
+
+
+    bool
+    FibreBars::fibre_broken(const unsigned int f) const
+    {
+      const auto b = broken.begin() + index(f, 0);
+      return std::find(b, b + n_nodes, 1) != b + n_nodes;
+    }
+
+
+    double
+    FibreBars::mean_strain(const unsigned int k) const
+    {
+      const unsigned int j = k * bars_per_cell;
+      double sum = 0., count = 0.;
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        // The bars j - 1 and j, where they exist.
+        for (unsigned int b = (j > 0 ? j - 1 : 0); b <= j && b + 1 < n_nodes;
+             ++b)
+          if (!broken[index(f, b)])
+            {
+              sum += strain[index(f, b)];
+              count += 1.;
+            }
+      return count > 0. ? sum / count : 0.;
+    }
+
+
+    void
+    FibreBars::save_state(Checkpoint::Writer &out) const
+    {
+      out.tag("fibre bars");
+      out.put(displacement);
+      out.put(velocity);
+      out.put(force);
+      out.put(strain);
+      out.put(broken);
+      out.put(elastic);
+      out.put(dissipated);
+      out.put(largest);
+    }
+
+
+    void
+    FibreBars::load_state(Checkpoint::Reader &in)
+    {
+      in.tag("fibre bars");
+      in.get_same_size(displacement, "fibre bars' displacements");
+      in.get_same_size(velocity, "fibre bars' velocities");
+      in.get_same_size(force, "fibre bars' forces");
+      in.get_same_size(strain, "fibre bars' strains");
+      in.get_same_size(broken, "fibre bars' failure states");
+      in.get(elastic);
+      in.get(dissipated);
+      in.get(largest);
+    }
+
+
+    std::size_t
+    FibreBars::memory_consumption() const
+    {
+      return displacement.size() * (5 * sizeof(double) + 1) +
+             node_force.size() * 2 * sizeof(double) +
+             layer_force.size() * 2 * sizeof(double) +
+             n_fibres * (4 * sizeof(unsigned int) + 6 * sizeof(double));
+    }
+  } // namespace Coupling
+} // namespace YarnImpact

@@ -1,0 +1,307 @@
+// The hybrid yarn's model class, private to source/coupling: its step and
+// outputs are in hybrid_model.cc, its patch test in hybrid_patch_test.cc.
+
+#ifndef yarn_impact_coupling_hybrid_model_implementation_h
+#define yarn_impact_coupling_hybrid_model_implementation_h
+
+#include <yarn_impact/core/impact_simulation.h>
+#include <yarn_impact/core/output_file.h>
+#include <yarn_impact/core/projectile.h>
+#include <yarn_impact/coupling/bridging_domain.h>
+#include <yarn_impact/coupling/fibre_bars.h>
+#include <yarn_impact/coupling/hybrid_model.h>
+#include <yarn_impact/coupling/hybrid_parts.h>
+#include <yarn_impact/coupling/overlap.h>
+#include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/fe/fe_model.h>
+#include <yarn_impact/fe/yarn_mesh.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/tria.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    namespace internal
+    {
+      /**
+       * The hybrid yarn: the parts, and the coupling applied after all
+       * have computed their forces (doc/hybrid.md section 3).
+       */
+      class HybridModel : public ImpactModel
+      {
+      public:
+        HybridModel(const YarnImpact::Parameters::Shared &shared,
+                    const FE::Parameters &fe,
+                    const DEM::Parameters &dem,
+                    const HybridParameters &hybrid,
+                    const MPI_Comm communicator)
+          : shared(shared)
+          , fe_parameters(fe)
+          , layout(hybrid_layout(shared, fe, dem, hybrid))
+          , communicator(communicator)
+        {
+          HybridParts parts = hybrid_parts(shared, fe, dem, layout);
+          if (!layout.fibre_bars)
+            parts.fe.section_quadrature_factor =
+              section_quadrature(shared, fe, dem);
+          dem_shared = parts.dem_shared;
+          fe_shared  = parts.fe_shared;
+          fe_model   = FE::create_model(fe_shared, parts.fe, communicator);
+          dem_model  = DEM::create_model(dem_shared, parts.dem, communicator);
+          nose.dem_part      = dem_model.get();
+          nose.x_begin       = layout.overlap_begin;
+          nose.station_begin = layout.first_coupled_station;
+          nose.station_end   = layout.dem_trusses + 1;
+          if (layout.fibre_bars)
+            nose.bars = &bars;
+          if (layout.clamp_cells > 0)
+            {
+              clamp_model =
+                DEM::create_model(shared, parts.dem_clamp, communicator);
+              clamp.dem_part      = clamp_model.get();
+              clamp.x_begin       = layout.clamp_begin;
+              clamp.station_begin = 0;
+              clamp.station_end =
+                layout.overlap_cells * layout.cell_trusses + 1;
+            }
+        }
+
+        std::string
+        name() const override
+        {
+          return "hybrid";
+        }
+
+        void
+        setup(const Projectile &projectile, std::ostream &out) override;
+
+        double
+        yarn_top() const override
+        {
+          return dem_model->yarn_top();
+        }
+
+        double
+        stable_time_step() const override
+        {
+          double dt = std::min(fe_model->stable_time_step(),
+                               dem_model->stable_time_step());
+          if (clamp_model)
+            dt = std::min(dt, clamp_model->stable_time_step());
+          if (layout.fibre_bars)
+            dt = std::min(dt, bars.stable_time_step());
+          return dt;
+        }
+
+        double
+        compute_forces(const Projectile &projectile, const double dt) override
+        {
+          const double f_fe = fe_model->compute_forces(projectile, dt);
+          if (layout.fibre_bars)
+            {
+              hold_axial_motion();
+              bars.compute_forces(*fe_model, communicator);
+            }
+          const double f_dem = dem_model->compute_forces(projectile, dt);
+          if (f_fe != 0.)
+            throw RunError(
+              "the projectile touches the FE part of the hybrid yarn: raise "
+              "Hybrid/DEM half-length");
+          if (clamp_model && clamp_model->compute_forces(projectile, dt) != 0.)
+            throw RunError(
+              "the projectile touches the DEM part at the clamp: lower "
+              "Hybrid/Clamp DEM length");
+          nose.couple(*fe_model, dt, communicator);
+          if (clamp_model)
+            clamp.couple(*fe_model, dt, communicator);
+          return f_fe + f_dem;
+        }
+
+        void
+        kick(const double dt) override
+        {
+          fe_model->kick(dt);
+          dem_model->kick(dt);
+          if (clamp_model)
+            clamp_model->kick(dt);
+          if (layout.fibre_bars)
+            bars.kick(dt);
+        }
+
+        void
+        drift(const double dt) override
+        {
+          fe_model->drift(dt);
+          dem_model->drift(dt);
+          if (clamp_model)
+            clamp_model->drift(dt);
+          if (layout.fibre_bars)
+            bars.drift(dt);
+        }
+
+        Observables
+        observables() const override;
+
+        AxialProperties
+        axial_properties() const override
+        {
+          return dem_model->axial_properties();
+        }
+
+        double
+        mass() const override
+        {
+          return fe_model->mass() + dem_model->mass() +
+                 (clamp_model ? clamp_model->mass() : 0.);
+        }
+
+        std::string
+        write_snapshot(const std::string &directory,
+                       const unsigned int index,
+                       const double time) const override;
+
+        unsigned long
+        n_elements() const override
+        {
+          return dem_model->n_elements() +
+                 (clamp_model ? clamp_model->n_elements() : 0ul);
+        }
+
+        void
+        save_state(Checkpoint::Writer &out) const override
+        {
+          out.tag("hybrid model");
+          fe_model->save_state(out);
+          dem_model->save_state(out);
+          out.put(nose.work);
+          if (clamp_model)
+            {
+              clamp_model->save_state(out);
+              out.put(clamp.work);
+            }
+          if (layout.fibre_bars)
+            bars.save_state(out);
+        }
+
+        void
+        load_state(Checkpoint::Reader &in) override
+        {
+          in.tag("hybrid model");
+          fe_model->load_state(in);
+          dem_model->load_state(in);
+          in.get(nose.work);
+          if (clamp_model)
+            {
+              clamp_model->load_state(in);
+              in.get(clamp.work);
+            }
+          if (layout.fibre_bars)
+            bars.load_state(in);
+        }
+
+        std::string
+        remarks() const override
+        {
+          std::ostringstream s;
+          // Each part's remarks on lines of their own.
+          auto lines = [&s](const std::string &text) {
+            s << text;
+            if (!text.empty() && text.back() != '\n')
+              s << '\n';
+          };
+          lines(dem_model->remarks());
+          if (clamp_model)
+            lines("At the clamp: " + clamp_model->remarks());
+          if (layout.fibre_bars)
+            s << "Hybrid far field: " << bars.n_broken()
+              << " fibre bars broken\n";
+          for (const Overlap *o : overlaps())
+            {
+              const char *which = (o == &nose ? "" : " at the clamp");
+              s << "Hybrid coupling" << which
+                << ": work done by the FE part on the DEM part through the "
+                   "overlap "
+                << std::setprecision(6) << symmetry() * o->work * 1e3
+                << " mJ\n";
+            }
+          return s.str();
+        }
+
+        /** See Coupling::patch_test(). */
+        double
+        patch_test(const double strain);
+
+      private:
+        /** The overlaps in use: the one by the nose, and the one at the
+         * clamp if there is a DEM part there. */
+        std::vector<const Overlap *>
+        overlaps() const
+        {
+          if (clamp_model)
+            return {&nose, &clamp};
+          return {&nose};
+        }
+
+        double
+        symmetry() const
+        {
+          return YarnImpact::Parameters::symmetry_factor(
+            shared.general.symmetry);
+        }
+
+        const YarnImpact::Parameters::Shared &shared;
+        const FE::Parameters fe_parameters;
+        const HybridLayout layout;
+        const MPI_Comm communicator;
+        /** The parts' problems (the FE model keeps a reference to its
+         * own; the clamp part's is @p shared). */
+        YarnImpact::Parameters::Shared dem_shared, fe_shared;
+        std::unique_ptr<ImpactModel> fe_model, dem_model, clamp_model;
+        Overlap nose, clamp;
+        /** The far field's fibres, with Hybrid/Far field = fibre bars. */
+        FibreBars bars;
+
+        /** Hold the FE part's axial motion (under fibre bars): no force
+         * on its x dofs, which start at rest. */
+        /** Whether every fibre has a broken truss in the DEM part or a
+         * broken bar (under fibre bars; collective). */
+        bool
+        every_fibre_broken() const
+        {
+          const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
+          std::vector<double> broken(dem.n_fibres, 0.);
+          for (unsigned int s = dem.station_begin;
+               s < std::min(dem.station_end, dem.n_stations - 1);
+               ++s)
+            for (unsigned int f = 0; f < dem.n_fibres; ++f)
+              if (dem.broken[dem.local_index(s, f)])
+                broken[f] = 1.;
+          dealii::Utilities::MPI::max(broken, communicator, broken);
+          for (unsigned int f = 0; f < dem.n_fibres; ++f)
+            if (broken[f] == 0. && !bars.fibre_broken(f))
+              return false;
+          return dem.n_fibres > 0;
+        }
+
+        void
+        hold_axial_motion()
+        {
+          const FE::CouplingView fe = FE::coupling_view(*fe_model);
+          for (const auto &node : *fe.nodes)
+            fe.force[node[0]] = 0.;
+        }
+      };
+    } // namespace internal
+  }   // namespace Coupling
+} // namespace YarnImpact
+
+#endif

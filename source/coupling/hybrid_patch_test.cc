@@ -1,0 +1,148 @@
+// The patch test of the hybrid yarn (doc/hybrid.md section 4.2): the
+// coupled system at rest under a uniform axial stretch must feel no force.
+
+#include "hybrid_model_implementation.h"
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    using namespace dealii;
+
+
+    namespace internal
+    {
+      double
+      HybridModel::patch_test(const double strain)
+      {
+        double largest                       = 0.;
+        std::vector<ImpactModel *> dem_parts = {dem_model.get()};
+        if (clamp_model)
+          dem_parts.push_back(clamp_model.get());
+        {
+          const FE::CouplingView fe = FE::coupling_view(*fe_model);
+          for (const auto &node : *fe.nodes)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                fe.displacement[node[d]] =
+                  d == 0 && !layout.fibre_bars
+                    ? strain * (*fe.reference_coordinate)[node[0]]
+                    : 0.;
+                fe.velocity[node[d]] = 0.;
+              }
+          for (ImpactModel *part : dem_parts)
+            {
+              const DEM::CouplingView dem = DEM::coupling_view(*part);
+              for (unsigned int s = dem.station_begin; s < dem.station_end; ++s)
+                for (unsigned int f = 0; f < dem.n_fibres; ++f)
+                  {
+                    const std::size_t i = dem.local_index(s, f);
+                    dem.position[3 * i] = (1. + strain) * (*dem.station_x)[s];
+                    dem.velocity[3 * i] = 0.;
+                    dem.velocity[3 * i + 1] = dem.velocity[3 * i + 2] = 0.;
+                  }
+            }
+        }
+        Projectile far(shared.projectile, shared.yarn.thickness_semi_axis);
+        far.place_on(1.);
+        // Under fibre bars the bars take the stretch, the continuum's axial
+        // motion is held.
+        if (layout.fibre_bars)
+          for (unsigned int f = 0; f < bars.n_fibres; ++f)
+            for (unsigned int j = 0; j < bars.n_nodes; ++j)
+              {
+                const std::size_t i  = bars.index(f, j);
+                bars.displacement[i] = strain * bars.node_x(j);
+                bars.velocity[i]     = 0.;
+              }
+        // The models' own forces, then the generalised ones of the coupled
+        // system (couple() replaces the overlaps').
+        fe_model->compute_forces(far, 0.);
+        if (layout.fibre_bars)
+          {
+            hold_axial_motion();
+            bars.compute_forces(*fe_model, communicator);
+            // The bar nodes outside the overlap but the clamped one.
+            for (unsigned int f = 0; f < bars.n_fibres; ++f)
+              for (unsigned int j =
+                     layout.overlap_cells * bars.bars_per_cell + 1;
+                   j + 1 < bars.n_nodes;
+                   ++j)
+                largest =
+                  std::max(largest, std::abs(bars.force[bars.index(f, j)]));
+          }
+        for (ImpactModel *part : dem_parts)
+          part->compute_forces(far, 0.);
+        const FE::CouplingView fe = FE::coupling_view(*fe_model);
+        std::vector<bool> coupled(fe.reference_coordinate->size(), false);
+        for (const Overlap *o : overlaps())
+          for (const auto &[c, dofs] : o->owned_nodes)
+            for (unsigned int d = 0; d < 3; ++d)
+              coupled[dofs[d]] = true;
+        for (const auto &node : *fe.nodes)
+          for (unsigned int d = 0; d < 3; ++d)
+            if (!coupled[node[d]] && fe.inverse_mass[node[d]] != 0.)
+              largest = std::max(largest, std::abs(fe.force[node[d]]));
+        // The free spheres outside the overlaps: the DEM part's by the nose
+        // (x normal to the plane x = 0 is held there), the one's at the
+        // clamp but the clamped station.
+        {
+          const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
+          for (unsigned int s = dem.station_begin;
+               s < std::min(dem.station_end, nose.station_begin);
+               ++s)
+            for (unsigned int f = 0; f < dem.n_fibres; ++f)
+              for (unsigned int d = (s == 0 ? 1 : 0); d < 3; ++d)
+                largest =
+                  std::max(largest,
+                           std::abs(dem.force[3 * dem.local_index(s, f) + d]));
+        }
+        if (clamp_model)
+          {
+            const DEM::CouplingView dem = DEM::coupling_view(*clamp_model);
+            for (unsigned int s =
+                   std::max(dem.station_begin, clamp.station_end);
+                 s < std::min(dem.station_end, dem.n_stations - 1);
+                 ++s)
+              for (unsigned int f = 0; f < dem.n_fibres; ++f)
+                for (unsigned int d = 0; d < 3; ++d)
+                  largest =
+                    std::max(largest,
+                             std::abs(
+                               dem.force[3 * dem.local_index(s, f) + d]));
+          }
+        nose.couple(*fe_model, 0., communicator);
+        if (clamp_model)
+          clamp.couple(*fe_model, 0., communicator);
+        for (const Overlap *o : overlaps())
+          largest = std::max(largest, o->largest_generalised_force());
+        largest              = Utilities::MPI::max(largest, communicator);
+        const double tension = shared.yarn.fibre_modulus * M_PI * 0.25 *
+                               shared.yarn.fibre_diameter *
+                               shared.yarn.fibre_diameter * strain;
+        return largest / tension;
+      }
+
+    } // namespace internal
+
+
+    double
+    patch_test(const YarnImpact::Parameters::Shared &shared,
+               const FE::Parameters &fe,
+               const DEM::Parameters &dem,
+               const HybridParameters &hybrid,
+               const double strain,
+               const MPI_Comm communicator)
+    {
+      validate(shared, fe, dem, hybrid);
+      internal::HybridModel model(shared, fe, dem, hybrid, communicator);
+      std::ostringstream quiet;
+      Projectile far(shared.projectile, shared.yarn.thickness_semi_axis);
+      far.place_on(1.);
+      model.setup(far, quiet);
+      return model.patch_test(strain);
+    }
+
+
+  } // namespace Coupling
+} // namespace YarnImpact
