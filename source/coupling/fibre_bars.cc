@@ -283,6 +283,23 @@ namespace YarnImpact
     }
 
 
+    std::vector<unsigned long>
+    FibreBars::broken_per_millimetre() const
+    {
+      std::vector<unsigned long> count;
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          if (broken[index(f, j)])
+            {
+              const unsigned int mm = (node_x(j) + 0.5 * h) * 1e3;
+              if (count.size() <= mm)
+                count.resize(mm + 1, 0);
+              ++count[mm];
+            }
+      return count;
+    }
+
+
     bool
     FibreBars::fibre_broken(const unsigned int f) const
     {

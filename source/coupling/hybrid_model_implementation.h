@@ -222,8 +222,23 @@ namespace YarnImpact
           if (clamp_model)
             lines("At the clamp: " + clamp_model->remarks());
           if (layout.fibre_bars)
-            s << "Hybrid far field: " << bars.n_broken()
-              << " fibre bars broken\n";
+            {
+              s << "Hybrid far field: " << bars.n_broken()
+                << " fibre bars broken";
+              const std::vector<unsigned long> c =
+                bars.broken_per_millimetre();
+              const char *separator = " (x:";
+              for (unsigned int mm = 0; mm < c.size(); ++mm)
+                if (c[mm] > 0)
+                  {
+                    s << separator << " " << c[mm] << " in " << mm << "-"
+                      << mm + 1 << " mm";
+                    separator = ",";
+                  }
+              if (*separator == ',')
+                s << ")";
+              s << "\n";
+            }
           for (const Overlap *o : overlaps())
             {
               const char *which = (o == &nose ? "" : " at the clamp");

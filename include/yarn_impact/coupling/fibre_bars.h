@@ -127,6 +127,11 @@ namespace YarnImpact
       unsigned long
       n_broken() const;
 
+      /** Broken bars per 1 mm of reference x of their middle, from x = 0
+       * [-]. */
+      std::vector<unsigned long>
+      broken_per_millimetre() const;
+
       /** Whether fibre @p f has a broken bar. */
       bool
       fibre_broken(const unsigned int f) const;
