@@ -106,8 +106,7 @@ namespace YarnImpact
                       ExcMessage("Hybrid: an FE node is not a vertex of the "
                                  "section"));
           const unsigned int c = layer * n_vertices + v;
-          owned_nodes.push_back(
-            {c, std::array<unsigned int, 2>{{node[1], node[2]}}});
+          owned_nodes.push_back({c, node});
           found[c] = 1.;
         }
       Utilities::MPI::sum(found, communicator, found);
@@ -116,10 +115,87 @@ namespace YarnImpact
                     ExcMessage("Hybrid: a node of the fibre bars' layers is "
                                "missing from the FE part or owned twice"));
       node_displacement.assign(2 * n_layers * n_vertices, 0.);
+      node_axial_force.assign(n_layers * n_vertices, 0.);
+      set_up_projection();
       node_force.assign(2 * n_layers * n_vertices, 0.);
       layer_displacement.assign(2 * n_layers, 0.);
       layer_force.assign(2 * n_layers, 0.);
       elastic = dissipated = largest = 0.;
+    }
+
+
+    void
+    FibreBars::set_up_projection()
+    {
+      // G = Psi^T Psi (n_v x n_v) and Psi^T, then P = G^-1 Psi^T by
+      // Cholesky, column by column.
+      const unsigned int n = n_vertices;
+      std::vector<double> G(std::size_t(n) * n, 0.);
+      projection.assign(std::size_t(n) * n_fibres, 0.);
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        for (unsigned int a = 0; a < 4; ++a)
+          {
+            const unsigned int va = fibre_vertices[f][a];
+            projection[std::size_t(va) * n_fibres + f] += fibre_values[f][a];
+            for (unsigned int b = 0; b < 4; ++b)
+              G[std::size_t(va) * n + fibre_vertices[f][b]] +=
+                fibre_values[f][a] * fibre_values[f][b];
+          }
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          double d = G[std::size_t(j) * n + j];
+          for (unsigned int k = 0; k < j; ++k)
+            d -= G[std::size_t(j) * n + k] * G[std::size_t(j) * n + k];
+          AssertThrow(d > 1e-12 * n_fibres,
+                      ExcMessage("Hybrid: too few fibres around a section "
+                                 "vertex for the fibre bars' axial fit; "
+                                 "lower FE/Section refinements"));
+          G[std::size_t(j) * n + j] = std::sqrt(d);
+          for (unsigned int i = j + 1; i < n; ++i)
+            {
+              double s = G[std::size_t(i) * n + j];
+              for (unsigned int k = 0; k < j; ++k)
+                s -= G[std::size_t(i) * n + k] * G[std::size_t(j) * n + k];
+              G[std::size_t(i) * n + j] = s / G[std::size_t(j) * n + j];
+            }
+        }
+      std::vector<double> b(n);
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        {
+          for (unsigned int i = 0; i < n; ++i)
+            b[i] = projection[std::size_t(i) * n_fibres + f];
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              for (unsigned int k = 0; k < i; ++k)
+                b[i] -= G[std::size_t(i) * n + k] * b[k];
+              b[i] /= G[std::size_t(i) * n + i];
+            }
+          for (unsigned int i = n; i-- > 0;)
+            {
+              for (unsigned int k = i + 1; k < n; ++k)
+                b[i] -= G[std::size_t(k) * n + i] * b[k];
+              b[i] /= G[std::size_t(i) * n + i];
+            }
+          for (unsigned int i = 0; i < n; ++i)
+            projection[std::size_t(i) * n_fibres + f] = b[i];
+        }
+    }
+
+
+    void
+    FibreBars::set_continuum_axial(ImpactModel &fe_model) const
+    {
+      const FE::CouplingView fe = FE::coupling_view(fe_model);
+      for (const auto &[c, dofs] : owned_nodes)
+        {
+          const unsigned int k = c / n_vertices, v = c % n_vertices;
+          const double *p = &projection[std::size_t(v) * n_fibres];
+          double u        = 0.;
+          for (unsigned int f = 0; f < n_fibres; ++f)
+            u += p[f] * displacement[index(f, k * bars_per_cell)];
+          fe.displacement[dofs[0]] = u;
+          fe.velocity[dofs[0]]     = 0.;
+        }
     }
 
 
@@ -154,7 +230,7 @@ namespace YarnImpact
       std::fill(node_displacement.begin(), node_displacement.end(), 0.);
       for (const auto &[c, dofs] : owned_nodes)
         for (unsigned int d = 0; d < 2; ++d)
-          node_displacement[2 * c + d] = fe.displacement[dofs[d]];
+          node_displacement[2 * c + d] = fe.displacement[dofs[1 + d]];
       Utilities::MPI::sum(node_displacement, communicator, node_displacement);
 
       std::fill(force.begin(), force.end(), 0.);
@@ -242,7 +318,25 @@ namespace YarnImpact
         }
       for (const auto &[c, dofs] : owned_nodes)
         for (unsigned int d = 0; d < 2; ++d)
-          fe.force[dofs[d]] += node_force[2 * c + d];
+          fe.force[dofs[1 + d]] += node_force[2 * c + d];
+      // The FE part's axial forces to the fibres, P^T f_x, layer by layer.
+      std::fill(node_axial_force.begin(), node_axial_force.end(), 0.);
+      for (const auto &[c, dofs] : owned_nodes)
+        {
+          node_axial_force[c] = fe.force[dofs[0]];
+          fe.force[dofs[0]]   = 0.;
+        }
+      Utilities::MPI::sum(node_axial_force, communicator, node_axial_force);
+      for (unsigned int k = 0; k < n_layers; ++k)
+        for (unsigned int v = 0; v < n_vertices; ++v)
+          {
+            const double fx = node_axial_force[k * n_vertices + v];
+            if (fx == 0.)
+              continue;
+            const double *p = &projection[std::size_t(v) * n_fibres];
+            for (unsigned int f = 0; f < n_fibres; ++f)
+              force[index(f, k * bars_per_cell)] += p[f] * fx;
+          }
     }
 
 

@@ -46,7 +46,6 @@ namespace YarnImpact
                         *dem.fibre_z,
                         shared.yarn.failure,
                         communicator);
-            hold_axial_motion();
             bars.compute_forces(*fe_model, communicator);
           }
         nose.set_up(*fe_model, section, layout, shared.yarn, communicator);

@@ -105,12 +105,11 @@ namespace YarnImpact
         double
         compute_forces(const Projectile &projectile, const double dt) override
         {
+          if (layout.fibre_bars)
+            bars.set_continuum_axial(*fe_model);
           const double f_fe = fe_model->compute_forces(projectile, dt);
           if (layout.fibre_bars)
-            {
-              hold_axial_motion();
-              bars.compute_forces(*fe_model, communicator);
-            }
+            bars.compute_forces(*fe_model, communicator);
           const double f_dem = dem_model->compute_forces(projectile, dt);
           if (f_fe != 0.)
             throw RunError(
@@ -225,9 +224,8 @@ namespace YarnImpact
             {
               s << "Hybrid far field: " << bars.n_broken()
                 << " fibre bars broken";
-              const std::vector<unsigned long> c =
-                bars.broken_per_millimetre();
-              const char *separator = " (x:";
+              const std::vector<unsigned long> c = bars.broken_per_millimetre();
+              const char *separator              = " (x:";
               for (unsigned int mm = 0; mm < c.size(); ++mm)
                 if (c[mm] > 0)
                   {
@@ -285,8 +283,6 @@ namespace YarnImpact
         /** The far field's fibres, with Hybrid/Far field = fibre bars. */
         FibreBars bars;
 
-        /** Hold the FE part's axial motion (under fibre bars): no force
-         * on its x dofs, which start at rest. */
         /** Whether every fibre has a broken truss in the DEM part or a
          * broken bar (under fibre bars; collective). */
         bool
@@ -305,14 +301,6 @@ namespace YarnImpact
             if (broken[f] == 0. && !bars.fibre_broken(f))
               return false;
           return dem.n_fibres > 0;
-        }
-
-        void
-        hold_axial_motion()
-        {
-          const FE::CouplingView fe = FE::coupling_view(*fe_model);
-          for (const auto &node : *fe.nodes)
-            fe.force[node[0]] = 0.;
         }
       };
     } // namespace internal

@@ -210,8 +210,9 @@ namespace YarnImpact
       // continuum keeps the section's terms only.
       if (l.fibre_bars)
         {
-          p.fe.axial_modulus_from_fibres = false;
-          p.fe.charmetant.k_e            = 0.;
+          p.fe.axial_modulus_from_fibres  = false;
+          p.fe.charmetant.k_e             = 0.;
+          p.fe.charmetant.resist_dilation = false;
         }
 
       // The DEM part at the clamp: the whole yarn's stations from x_c to

@@ -57,10 +57,11 @@ namespace YarnImpact
               }
         // The models' own forces, then the generalised ones of the coupled
         // system (couple() replaces the overlaps').
+        if (layout.fibre_bars)
+          bars.set_continuum_axial(*fe_model);
         fe_model->compute_forces(far, 0.);
         if (layout.fibre_bars)
           {
-            hold_axial_motion();
             bars.compute_forces(*fe_model, communicator);
             // The bar nodes outside the overlap but the clamped one.
             for (unsigned int f = 0; f < bars.n_fibres; ++f)

@@ -14,6 +14,7 @@ namespace YarnImpact
       , k_tc(parameters.k_tc)
       , p(parameters.p)
       , k_td(parameters.k_td)
+      , resist_dilation(parameters.resist_dilation)
     {}
 
 

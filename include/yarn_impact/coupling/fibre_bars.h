@@ -39,7 +39,13 @@ namespace YarnImpact
      * as a DEM truss), h_b = h / m, alpha the continuum weight of its cell
      * layer: the axial part acts on u, the transverse part on the FE nodes
      * through the shape values. The FE part then has no fibre term
-     * (k_e = 0) and its axial motion is held: the bars carry the axial
+     * (k_e = 0), and its axial displacement is not its own: at every node
+     * layer it is the least-squares fit of the fibres' axial displacements
+     * over the section, U_x = P u (P = (Psi^T Psi)^-1 Psi^T, Psi the
+     * section's shape values at the fibres), so that its transverse terms
+     * see the section the fibres make (a deflected yarn's section turns
+     * with it instead of being compacted by the slope), and its axial
+     * forces go back to the fibres through P^T. The bars carry the axial
      * stiffness and the axial mass (each node the fibre's mass
      * alpha rho_f A_f h_b / 2 per adjacent bar), the FE nodes the
      * transverse mass. A bar breaks, for good, when its strain passes
@@ -79,12 +85,20 @@ namespace YarnImpact
       void
       drift(const double dt);
 
+      /** Set the owned FE nodes' axial displacements of @p fe_model to
+       * the fibres' fit, P u, and their axial velocities to zero (the bars
+       * carry the axial motion); before the FE part's forces. */
+      void
+      set_continuum_axial(ImpactModel &fe_model) const;
+
       /**
        * The bars' forces at the present displacements: the axial ones on
        * the bar nodes (replacing the last), the transverse ones added to
-       * the owned FE nodes' forces of @p fe_model; breaks bars past the
-       * failure strain (collective: sums the FE displacements of the node
-       * layers).
+       * the owned FE nodes' forces of @p fe_model, the FE nodes' axial
+       * forces moved to the bars through P^T (and zeroed there); breaks
+       * bars past the failure strain (collective: sums the FE
+       * displacements and axial forces of the node layers). After the FE
+       * part's forces.
        */
       void
       compute_forces(ImpactModel &fe_model, const MPI_Comm communicator);
@@ -187,9 +201,14 @@ namespace YarnImpact
       /** Section vertices [-]. */
       unsigned int n_vertices = 0;
       /** Owned FE nodes of the layers: (layer n_vertices + vertex, local
-       * y and z dofs). */
-      std::vector<std::pair<unsigned int, std::array<unsigned int, 2>>>
+       * x, y and z dofs). */
+      std::vector<std::pair<unsigned int, std::array<unsigned int, 3>>>
         owned_nodes;
+      /** The section's projection P, n_vertices x n_fibres, row-major
+       * [-]. */
+      std::vector<double> projection;
+      /** The layers' FE axial forces (per node) [N]. */
+      std::vector<double> node_axial_force;
       /** The layers' transverse displacements (y, z per node) and the
        * bars' transverse forces on them [m], [N]. */
       std::vector<double> node_displacement, node_force;
@@ -204,6 +223,10 @@ namespace YarnImpact
       /** One fibre's transverse displacement at the layers and the bars'
        * transverse forces on them (y, z per layer) [m], [N]. */
       std::vector<double> layer_displacement, layer_force;
+
+      /** Build the projection P from the fibres' places in the section. */
+      void
+      set_up_projection();
 
       /** Cell of bar node @p j (the last node: the last cell) and its
        * fraction xi in it [-]. */

@@ -116,6 +116,7 @@ namespace YarnImpact
 
     private:
       double k_e, k_tc, p, k_td;
+      bool resist_dilation;
     };
 
 
@@ -151,10 +152,14 @@ namespace YarnImpact
       const V log_I4 = lane_log(I4);
       Ie             = 0.5 * log_I4;
       Itc            = 0.5 * lane_log(J) - 0.25 * log_I4;
-      const V a_tc   = lane_abs(Itc);
+      // Without resistance to dilation only compaction (I_tc < 0) counts:
+      // |min(I_tc, 0)| = (|I_tc| - I_tc) / 2.
+      const V a_tc =
+        resist_dilation ? lane_abs(Itc) : 0.5 * (lane_abs(Itc) - Itc);
       // |I_tc|^(p-1), computed once for the stress and the energy.
       const V pow_pm1 = lane_pow(a_tc, p - 1.);
-      const V gp      = (p * k_tc) * pow_pm1 * lane_sign(Itc);
+      const V gp      = resist_dilation ? (p * k_tc) * pow_pm1 * lane_sign(Itc)
+                                        : (-p * k_tc) * pow_pm1;
 
       // Distortion from the Schur complement of C on the section plane,
       // which stays accurate as s -> 0 (doc/theory.md section 1.4).
@@ -268,8 +273,9 @@ namespace YarnImpact
       const Number s2 =
         ((t11 - t22) * (t11 - t22) + 4. * t12 * t12) / (4. * I3 / I4);
       const Number Itd = 0.5 * asinh(sqrt(s2));
-      return 0.5 * k_e * Ie * Ie + k_tc * pow(abs(Itc), p) +
-             0.5 * k_td * Itd * Itd;
+      const Number a_tc =
+        resist_dilation ? Number(abs(Itc)) : Number(0.5 * (abs(Itc) - Itc));
+      return 0.5 * k_e * Ie * Ie + k_tc * pow(a_tc, p) + 0.5 * k_td * Itd * Itd;
     }
   } // namespace FE
 } // namespace YarnImpact

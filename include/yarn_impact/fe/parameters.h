@@ -34,6 +34,11 @@ namespace YarnImpact
       double k_tc = 1055.82e6;  ///< compaction modulus [Pa]
       double p    = 2.205;      ///< compaction exponent [-]
       double k_td = 649.75e6;   ///< distortion modulus [Pa]
+      /** Whether the compaction term also resists the section's dilation
+       * (I_tc > 0), as the identified law does; a coupling may turn it off
+       * where the continuum stands for loose fibres, which spread without
+       * resistance (doc/hybrid.md section 3.4). Not a `.prm` entry. */
+      bool resist_dilation = true;
     };
 
     /**
