@@ -72,7 +72,7 @@ namespace YarnImpact
 
 
       void
-      PeriodicSegment::affine_gradient(FE::Matrix3 &F) const
+      PeriodicSegment::affine_gradient(Mechanics::Matrix3 &F) const
       {
         double mx[2] = {0., 0.}, mX[2] = {0., 0.};
         for (std::size_t i = 0; i < n; ++i)

@@ -384,7 +384,7 @@ namespace YarnImpact
             continue;
           double p[n_nodes][3];
           vertex_positions(c, p);
-          Invariants inv;
+          Mechanics::Invariants inv;
           inv.compaction        = cells.compaction[c];
           const double c_trans2 = law.transverse_modulus(inv) / law.density;
           double d[3][3]        = {};

@@ -1,8 +1,8 @@
 #ifndef yarn_impact_fe_cell_kernel_h
 #define yarn_impact_fe_cell_kernel_h
 
-#include <yarn_impact/fe/kinematics.h>
 #include <yarn_impact/fe/simd.h>
+#include <yarn_impact/mechanics/kinematics.h>
 
 #include <deal.II/lac/la_parallel_vector.h>
 
@@ -70,7 +70,9 @@ namespace YarnImpact
     /** F = I + sum_a u_a (x) grad N_a at one Gauss point, from the nodal
      * displacements u [m] and the shape gradients g [1/m] (both 3a + d). */
     inline void
-    deformation_gradient(const double *u, const double *g, Matrix3 &F)
+    deformation_gradient(const double *u,
+                         const double *g,
+                         Mechanics::Matrix3 &F)
     {
       F[0] = F[4] = F[8] = 1.;
       F[1] = F[2] = F[3] = F[5] = F[6] = F[7] = 0.;
