@@ -1,6 +1,7 @@
 #ifndef yarn_impact_app_application_h
 #define yarn_impact_app_application_h
 
+#include <yarn_impact/analysis/parameters.h>
 #include <yarn_impact/app/model_factory.h>
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/coupling/hybrid_model.h>
@@ -25,6 +26,8 @@ namespace YarnImpact
     /** Model(s) to run (entry `Model`). */
     ModelType model = ModelType::fe;
     Parameters::Shared shared;
+    /** Wave fronts and verification (analysis/). */
+    Analysis::Parameters analysis;
     FE::Parameters fe;
     DEM::Parameters dem;
     Coupling::HybridParameters hybrid;
