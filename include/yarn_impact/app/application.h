@@ -6,7 +6,7 @@
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/coupling/hybrid_model.h>
 #include <yarn_impact/dem/dem_model.h>
-#include <yarn_impact/dem/elementary_test.h>
+#include <yarn_impact/dem/elementary/elementary_test.h>
 #include <yarn_impact/fe/parameters.h>
 
 #include <iosfwd>

@@ -1,9 +1,9 @@
-#ifndef yarn_impact_dem_periodic_segment_h
-#define yarn_impact_dem_periodic_segment_h
+#ifndef yarn_impact_dem_elementary_periodic_segment_h
+#define yarn_impact_dem_elementary_periodic_segment_h
 
 #include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/dem/elementary_test.h>
+#include <yarn_impact/dem/elementary/elementary_test.h>
 #include <yarn_impact/dem/parameters.h>
 #include <yarn_impact/dem/truss.h>
 #include <yarn_impact/mechanics/kinematics.h>

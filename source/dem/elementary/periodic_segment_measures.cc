@@ -1,7 +1,7 @@
 // What the elementary tests measure on the periodic segment: the sums of
 // one CSV row (virial, energies), the affine deformation gradient of the
 // section, its second moments and extent, and the fibres' break strains.
-#include <yarn_impact/dem/periodic_segment.h>
+#include <yarn_impact/dem/elementary/periodic_segment.h>
 
 #include <algorithm>
 #include <cmath>

@@ -7,8 +7,8 @@
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
-#include <yarn_impact/dem/elementary_test.h>
-#include <yarn_impact/dem/periodic_segment.h>
+#include <yarn_impact/dem/elementary/elementary_test.h>
+#include <yarn_impact/dem/elementary/periodic_segment.h>
 #include <yarn_impact/mechanics/kinematics.h>
 
 #include <deal.II/base/mpi.h>
