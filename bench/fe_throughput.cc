@@ -96,7 +96,7 @@ main(int argc, char **argv)
                                   FE::create_model(p.shared, p.fe, comm),
                                   comm,
                                   sink,
-                                  Analysis::run_hooks(p.shared));
+                                  Analysis::run_hooks(p.shared, p.analysis));
       const auto summary = simulation.run();
       if (is_root)
         out << "default case " << argv[2] << ": " << summary.n_steps

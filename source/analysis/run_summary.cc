@@ -91,14 +91,15 @@ namespace YarnImpact
   namespace Analysis
   {
     RunHooks
-    run_hooks(const Parameters::Shared &parameters)
+    run_hooks(const YarnImpact::Parameters::Shared &shared,
+              const Parameters &analysis)
     {
       RunHooks hooks;
-      const Parameters::WaveFronts thresholds = parameters.wave_fronts;
+      const WaveFrontThresholds thresholds = analysis.wave_fronts;
       hooks.measure_fronts = [thresholds](const StationProfile &profile) {
         return measure_wave_fronts(profile, thresholds);
       };
-      const Parameters::Projectile projectile = parameters.projectile;
+      const YarnImpact::Parameters::Projectile projectile = shared.projectile;
       hooks.report_setup = [projectile](const ImpactModel &model,
                                         std::ostream &out) {
         const auto smith = smith_solution(model.axial_properties(),
@@ -118,12 +119,13 @@ namespace YarnImpact
     summarise_run(const RunResult &result,
                   const std::vector<HistoryRow> &rows,
                   const AxialProperties &axial,
-                  const Parameters::Shared &p)
+                  const YarnImpact::Parameters::Shared &p,
+                  const Parameters &analysis)
     {
       RunSummary summary;
       static_cast<RunResult &>(summary) = result;
       summary.regression_format =
-        p.output.verbosity == Parameters::Verbosity::test;
+        p.output.verbosity == YarnImpact::Parameters::Verbosity::test;
       const auto smith =
         smith_solution(axial, p.projectile.initial_velocity, p.projectile.mass);
       const double t     = result.end_time;
@@ -142,8 +144,8 @@ namespace YarnImpact
         }
 
       // Smith-theory quantities in the verification window.
-      const double t0 = p.verification.window_start;
-      const double t1 = std::min(p.verification.window_end, t);
+      const double t0 = analysis.verification.window_start;
+      const double t1 = std::min(analysis.verification.window_end, t);
       if (t1 > t0)
         {
           const auto v = [](const HistoryRow &r) {
@@ -189,7 +191,7 @@ namespace YarnImpact
           summary.plateau_strain = (n > 0 ? sum / n : 0.);
         }
 
-      const auto &v    = p.verification;
+      const auto &v    = analysis.verification;
       const double tol = v.tolerance;
       bool &ok         = summary.checks_passed;
       if (v.check_deceleration)

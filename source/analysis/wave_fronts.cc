@@ -8,7 +8,7 @@ namespace YarnImpact
   {
     WaveFrontPositions
     measure_wave_fronts(const StationProfile &profile,
-                        const Parameters::WaveFronts &thresholds)
+                        const WaveFrontThresholds &thresholds)
     {
       WaveFrontPositions fronts;
       const unsigned int n = profile.size();

@@ -78,6 +78,7 @@ namespace YarnImpact
   {
     declare_model_type(prm);
     Parameters::Shared::declare_parameters(prm);
+    Analysis::Parameters::declare_parameters(prm);
     FE::Parameters::declare_parameters(prm);
     DEM::Parameters::declare_parameters(prm);
     Coupling::HybridParameters::declare_parameters(prm);
@@ -89,6 +90,7 @@ namespace YarnImpact
   {
     model = parse_model_type(prm);
     shared.parse_parameters(prm);
+    analysis.parse_parameters(prm, shared);
     fe.parse_parameters(prm);
     dem.parse_parameters(prm);
     hybrid.parse_parameters(prm);
@@ -329,14 +331,13 @@ namespace YarnImpact
             // With both models, the FE's end state lets a restart in the
             // DEM part compare with it.
             checkpoints.keep_final_state = (type != models.back());
-            ImpactSimulation simulation(parameters.shared,
-                                        create_model(type,
-                                                     parameters,
-                                                     MPI_COMM_WORLD),
-                                        MPI_COMM_WORLD,
-                                        out,
-                                        Analysis::run_hooks(parameters.shared),
-                                        checkpoints);
+            ImpactSimulation simulation(
+              parameters.shared,
+              create_model(type, parameters, MPI_COMM_WORLD),
+              MPI_COMM_WORLD,
+              out,
+              Analysis::run_hooks(parameters.shared, parameters.analysis),
+              checkpoints);
             try
               {
                 const RunResult result = simulation.run();
@@ -344,7 +345,8 @@ namespace YarnImpact
                   Analysis::summarise_run(result,
                                           simulation.history(),
                                           simulation.model().axial_properties(),
-                                          parameters.shared);
+                                          parameters.shared,
+                                          parameters.analysis);
                 print_summary(summary, summary_text);
                 passed = passed && summary.checks_passed;
               }

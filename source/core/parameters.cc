@@ -110,75 +110,6 @@ namespace YarnImpact
                         Patterns::Bool(),
                         "Whether failure at the failure strain is modelled; "
                         "when false the yarn never breaks.");
-      prm.declare_entry(
-        "Failure model",
-        "sudden",
-        Patterns::Selection("sudden|progressive"),
-        "How an FE cell fails (the DEM's trusses always break at once at "
-        "the failure strain). sudden: the paper's criterion, a cell whose "
-        "largest Gauss-point fibre strain passes the failure strain loses "
-        "all its stress in one step. progressive: from Damage onset strain "
-        "on (grown across the thickness by Damage onset spread), the fibre "
-        "stress of the cell softens with its fibre strain down to zero, "
-        "linearly or with the tail of Softening tail stress, the slope set "
-        "by Fracture energy and the cell's length along the fibre (crack "
-        "band), and the released energy is counted as dissipated.");
-      prm.declare_entry(
-        "Damage onset strain",
-        "0.0347",
-        Patterns::Double(),
-        "Progressive failure model: the largest Gauss-point fibre strain of "
-        "an FE cell at which its fibre damage starts [-]. A cell averages "
-        "some 30 fibres over 0.254 mm and does not resolve the strain peak "
-        "of the fibres on the nose, so its fibres start breaking below the "
-        "fibre failure strain; calibrated at 120 m/s against the DEM's "
-        "first break by scripts/identify_fibre_failure.py "
-        "(doc/identification.md section 8).");
-      prm.declare_entry(
-        "Damage onset spread",
-        "0",
-        Patterns::Double(),
-        "Progressive failure model: relative growth s of the damage onset "
-        "strain across the yarn's thickness [-]. A cell whose shallowest "
-        "reference point lies at the depth z below the face the projectile "
-        "strikes (z = 0 there, 1 at the opposite face) starts its damage at "
-        "Damage onset strain x (1 + s z): the fibres against the nose are "
-        "taken to be the most stretched of the section, breaking first, and "
-        "those at the back last (doc/theory.md section 5.4). 0: one onset "
-        "for every cell. "
-        "Identified from the DEM impact by scripts/identify_fibre_failure.py "
-        "(doc/identification.md section 8).");
-      prm.declare_entry(
-        "Fracture energy",
-        "5.41e4",
-        Patterns::Double(),
-        "Energy dissipated per unit area of a crack across the yarn by the "
-        "progressive failure model, G_f [J/m^2]; identified from the DEM "
-        "by scripts/identify_fibre_failure.py (doc/identification.md "
-        "section 8). Must exceed the elastic energy per unit area of the "
-        "longest cell at the largest damage onset strain.");
-      prm.declare_entry(
-        "Softening tail stress",
-        "0",
-        Patterns::Double(),
-        "Progressive failure model: the fibre stress at the kink of a "
-        "bilinear softening curve, as a fraction beta of the stress at the "
-        "damage onset [-]. From the onset the fibre stress falls linearly "
-        "to beta times the onset stress, then along a tail down to zero. "
-        "The DEM's yarn, once most fibres are broken, holds a small load "
-        "over a long opening while the last fibres go (doc/theory.md "
-        "section 5.5). 0: the linear softening curve. Identified from the "
-        "DEM impact by scripts/identify_fibre_failure.py "
-        "(doc/identification.md section 8).");
-      prm.declare_entry(
-        "Softening tail energy",
-        "0",
-        Patterns::Double(),
-        "Progressive failure model with Softening tail stress > 0: the part "
-        "of Fracture energy that the tail dissipates, G_t [J/m^2]; the "
-        "first branch dissipates the rest. Identified from the DEM impact "
-        "by scripts/identify_fibre_failure.py (doc/identification.md "
-        "section 8).");
       prm.leave_subsection();
     }
 
@@ -196,34 +127,6 @@ namespace YarnImpact
       fibre_modulus   = get_positive_double(prm, "Yarn", "Fibre Young modulus");
       failure_strain  = get_positive_double(prm, "Yarn", "Failure strain");
       failure         = prm.get_bool("Failure");
-      failure_model   = prm.get("Failure model") == "progressive"
-                          ? FailureModel::progressive
-                          : FailureModel::sudden;
-      fracture_energy = get_positive_double(prm, "Yarn", "Fracture energy");
-      damage_onset_strain =
-        get_positive_double(prm, "Yarn", "Damage onset strain");
-      damage_onset_spread = prm.get_double("Damage onset spread");
-      require(damage_onset_spread >= 0. && std::isfinite(damage_onset_spread),
-              "Yarn/Damage onset spread",
-              "must be zero or positive: the fibres against the nose break "
-              "first");
-      softening_tail_stress = prm.get_double("Softening tail stress");
-      require(softening_tail_stress >= 0. && softening_tail_stress < 1.,
-              "Yarn/Softening tail stress",
-              "must lie in [0, 1): a fraction of the fibre stress at the "
-              "damage onset (0: linear softening)");
-      softening_tail_energy = prm.get_double("Softening tail energy");
-      require(std::isfinite(softening_tail_energy) &&
-                (softening_tail_stress == 0.
-                   ? softening_tail_energy == 0.
-                   : softening_tail_energy > 0. &&
-                       softening_tail_energy < fracture_energy),
-              "Yarn/Softening tail energy",
-              softening_tail_stress == 0.
-                ? "must be 0 when Softening tail stress is 0 (the linear "
-                  "softening curve has no tail)"
-                : "must lie between 0 and Fracture energy (exclusive): the "
-                  "part of it that the tail dissipates [J/m^2]");
       prm.leave_subsection();
     }
 
@@ -432,115 +335,6 @@ namespace YarnImpact
 
 
     void
-    WaveFronts::declare_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Wave fronts");
-      prm.declare_entry("Strain threshold",
-                        "2e-4",
-                        Patterns::Double(),
-                        "Longitudinal front: the outermost axial station "
-                        "whose longitudinal strain exceeds this value [-].");
-      prm.declare_entry("Deflection threshold",
-                        "10e-6",
-                        Patterns::Double(),
-                        "Transverse front: the outermost axial station whose "
-                        "deflection in the impact direction exceeds this "
-                        "value [m].");
-      prm.declare_entry("Spreading threshold",
-                        "0.02",
-                        Patterns::Double(),
-                        "Spreading front: the outermost axial station whose "
-                        "section width exceeds its initial width by this "
-                        "fraction [-].");
-      prm.leave_subsection();
-    }
-
-    void
-    WaveFronts::parse_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Wave fronts");
-      strain_threshold =
-        get_positive_double(prm, "Wave fronts", "Strain threshold");
-      deflection_threshold =
-        get_positive_double(prm, "Wave fronts", "Deflection threshold");
-      spreading_threshold =
-        get_positive_double(prm, "Wave fronts", "Spreading threshold");
-      prm.leave_subsection();
-    }
-
-
-    void
-    Verification::declare_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Verification");
-      prm.declare_entry("Window start",
-                        "1e-6",
-                        Patterns::Double(),
-                        "Start of the time window in which the run is "
-                        "compared with Smith theory (mean deceleration, "
-                        "strain behind the longitudinal front, front "
-                        "speeds) [s].");
-      prm.declare_entry("Window end",
-                        "3e-6",
-                        Patterns::Double(),
-                        "End of that window; it should end before the first "
-                        "longitudinal wave reflected at a clamp is back at "
-                        "the impact point [s].");
-      prm.declare_entry(
-        "Checks",
-        "",
-        Patterns::MultipleSelection(
-          "deceleration|plateau strain|longitudinal speed|transverse "
-          "speed|energy"),
-        "Checks asserted at the end of the run; the run exits with a "
-        "non-zero code when one fails. deceleration: mean projectile "
-        "deceleration in the window against Smith theory; plateau strain: "
-        "strain behind the longitudinal front; longitudinal speed and "
-        "transverse speed: front speeds fitted in the window (laboratory "
-        "frame); energy: largest energy balance error of the run.");
-      prm.declare_entry("Tolerance",
-                        "0.03",
-                        Patterns::Double(0.),
-                        "Relative tolerance of the Smith-theory checks [-].");
-      prm.declare_entry("Energy tolerance",
-                        "0.005",
-                        Patterns::Double(0.),
-                        "Largest energy balance error accepted by the energy "
-                        "check, as a fraction of the initial energy [-].");
-      prm.leave_subsection();
-    }
-
-    void
-    Verification::parse_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Verification");
-      window_start = prm.get_double("Window start");
-      window_end   = prm.get_double("Window end");
-      require(window_start >= 0.,
-              "Verification/Window start",
-              "must not be negative");
-      require(window_end > window_start,
-              "Verification/Window end",
-              "must be later than Window start");
-      const std::string checks = prm.get("Checks");
-      const auto has           = [&checks](const std::string &name) {
-        for (const auto &item : Utilities::split_string_list(checks))
-          if (item == name)
-            return true;
-        return false;
-      };
-      check_deceleration       = has("deceleration");
-      check_plateau_strain     = has("plateau strain");
-      check_longitudinal_speed = has("longitudinal speed");
-      check_transverse_speed   = has("transverse speed");
-      check_energy             = has("energy");
-      tolerance                = prm.get_double("Tolerance");
-      energy_tolerance         = prm.get_double("Energy tolerance");
-      prm.leave_subsection();
-    }
-
-
-    void
     Shared::declare_parameters(ParameterHandler &prm)
     {
       General::declare_parameters(prm);
@@ -548,8 +342,6 @@ namespace YarnImpact
       Projectile::declare_parameters(prm);
       Time::declare_parameters(prm);
       Output::declare_parameters(prm);
-      WaveFronts::declare_parameters(prm);
-      Verification::declare_parameters(prm);
     }
 
     void
@@ -560,8 +352,6 @@ namespace YarnImpact
       projectile.parse_parameters(prm);
       time.parse_parameters(prm);
       output.parse_parameters(prm);
-      wave_fronts.parse_parameters(prm);
-      verification.parse_parameters(prm);
 
       require(yarn.width_semi_axis >= yarn.thickness_semi_axis,
               "Yarn/Width semi-axis",
@@ -570,23 +360,6 @@ namespace YarnImpact
       require(projectile.diameter < yarn.length,
               "Projectile/Diameter",
               "must be smaller than Yarn/Length");
-      // The window quantities are measured up to the end of the run: a
-      // window past Time/End time would be found out only after the whole
-      // run, as a failed check on a truncated (or empty) window. The energy
-      // check does not use the window.
-      const auto &v = verification;
-      if (v.check_deceleration || v.check_plateau_strain ||
-          v.check_longitudinal_speed || v.check_transverse_speed)
-        {
-          std::ostringstream s;
-          s << "= " << v.window_end
-            << " s is after Time/End time = " << time.end_time
-            << " s: the checks of Verification/Checks measure in the window, "
-               "which must end by the end of the run";
-          require(v.window_end <= time.end_time * (1. + 1e-12),
-                  "Verification/Window end",
-                  s.str());
-        }
     }
   } // namespace Parameters
 } // namespace YarnImpact

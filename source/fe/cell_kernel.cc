@@ -43,9 +43,9 @@ namespace YarnImpact
           {
             double g[n_nodes * 3];
             gather_gradients(grad, q, g);
-            Matrix3 F, P;
+            Mechanics::Matrix3 F, P;
             deformation_gradient(u, g, F);
-            Invariants inv;
+            Mechanics::Invariants inv;
             double W = law.stress(F, P, inv);
             if constexpr (Law::separable_fibre_term)
               if (fibre_damage > 0.)
@@ -65,7 +65,7 @@ namespace YarnImpact
             r.sum_elongation += inv.elongation;
             r.max_compaction =
               std::max(r.max_compaction, std::abs(inv.compaction));
-            r.min_J = std::min(r.min_J, internal::determinant(F));
+            r.min_J = std::min(r.min_J, Mechanics::determinant(F));
             r.energy += W * JxW[q];
             for (double &p : P)
               p *= JxW[q];
@@ -114,7 +114,7 @@ namespace YarnImpact
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)
                   F[3 * i + j] += u[3 * a + i] * g[a][j];
-            const Double4 J = internal::determinant(F);
+            const Double4 J = Mechanics::determinant(F);
             Double4 P[9], Ie, Itc, Itd;
             Double4 W = law.stress_kernel(F, P, Ie, Itc, Itd);
             if constexpr (Law::separable_fibre_term)

@@ -19,29 +19,10 @@ namespace YarnImpact
 
 
     double
-    CharmetantLaw::transverse_modulus(const Invariants &inv) const
+    CharmetantLaw::transverse_modulus(const Mechanics::Invariants &inv) const
     {
       const double a = std::max(std::abs(inv.compaction), 1e-3);
       return p * (p - 1.) * k_tc / 4. * std::pow(a, p - 2.) + 0.25 * k_td;
-    }
-
-
-    Invariants
-    charmetant_invariants(const Matrix3 &F)
-    {
-      Matrix3 C;
-      const double J   = internal::right_cauchy_green(F, C);
-      const double I4  = C[0];
-      const double t11 = C[4] - C[1] * C[1] / I4;
-      const double t22 = C[8] - C[2] * C[2] / I4;
-      const double t12 = C[5] - C[1] * C[2] / I4;
-      const double s2 =
-        ((t11 - t22) * (t11 - t22) + 4. * t12 * t12) / (4. * J * J / I4);
-      Invariants inv;
-      inv.elongation = 0.5 * std::log(I4);
-      inv.compaction = 0.5 * std::log(J) - 0.25 * std::log(I4);
-      inv.distortion = 0.5 * std::asinh(std::sqrt(s2));
-      return inv;
     }
   } // namespace FE
 } // namespace YarnImpact

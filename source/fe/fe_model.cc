@@ -268,23 +268,8 @@ namespace YarnImpact
 
       const unsigned int n_loop_cells = cell_index.size();
       cells.reset_state(n_loop_cells);
-      const bool progressive =
-        shared.yarn.failure_model ==
-        YarnImpact::Parameters::Yarn::FailureModel::progressive;
-      failure_law.onset_log_stretch =
-        std::log1p(progressive ? shared.yarn.damage_onset_strain
-                               : shared.yarn.failure_strain);
-      failure_law.onset_spread =
-        progressive ? shared.yarn.damage_onset_spread : 0.;
-      failure_law.fracture_energy = shared.yarn.fracture_energy;
-      failure_law.tail_stress_ratio =
-        progressive ? shared.yarn.softening_tail_stress : 0.;
-      failure_law.tail_energy =
-        progressive ? shared.yarn.softening_tail_energy : 0.;
-      failure_law.fibre_modulus = law.axial_modulus();
-      failure_law.kind          = !shared.yarn.failure ? FailureLaw::Kind::none
-                                  : progressive ? FailureLaw::Kind::progressive
-                                                : FailureLaw::Kind::sudden;
+      failure_law =
+        make_failure_law(shared.yarn, parameters.failure, law.axial_modulus());
 
       // Owned nodes, their constraints and stations. The x dof of a vertex
       // identifies it; all three dofs of a vertex have the same owner.
@@ -384,7 +369,7 @@ namespace YarnImpact
             continue;
           double p[n_nodes][3];
           vertex_positions(c, p);
-          Invariants inv;
+          Mechanics::Invariants inv;
           inv.compaction        = cells.compaction[c];
           const double c_trans2 = law.transverse_modulus(inv) / law.density;
           double d[3][3]        = {};

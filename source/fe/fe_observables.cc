@@ -1,6 +1,7 @@
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/fe/constitutive_law.h>
+#include <yarn_impact/mechanics/kinematics.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/fe/mapping_q_eulerian.h>
@@ -243,11 +244,11 @@ namespace YarnImpact
           double sums[10] = {};
           for (unsigned int q = 0; q < n_q; ++q)
             {
-              Matrix3 F, P;
+              Mechanics::Matrix3 F, P;
               double g[n_nodes * 3];
               gather_gradients(&cells.grads[c * grad_size], q, g);
               deformation_gradient(u, g, F);
-              Invariants inv;
+              Mechanics::Invariants inv;
               law.stress(F, P, inv);
               if constexpr (Law::separable_fibre_term)
                 if (cells.damage[c] > 0.)
@@ -261,9 +262,9 @@ namespace YarnImpact
                     P[3] -= a * F[3];
                     P[6] -= a * F[6];
                   }
-              inv = charmetant_invariants(F);
+              inv = Mechanics::invariants(F);
               // Cauchy stress sigma = P F^T / J.
-              const double J = internal::determinant(F);
+              const double J = Mechanics::determinant(F);
               double sigma[9];
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)

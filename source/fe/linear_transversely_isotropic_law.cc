@@ -30,12 +30,12 @@ namespace YarnImpact
 
 
     double
-    LinearTransverselyIsotropicLaw::stress(const Matrix3 &F,
-                                           Matrix3 &P,
-                                           Invariants &inv) const
+    LinearTransverselyIsotropicLaw::stress(const Mechanics::Matrix3 &F,
+                                           Mechanics::Matrix3 &P,
+                                           Mechanics::Invariants &inv) const
     {
-      Matrix3 C, S;
-      internal::right_cauchy_green(F, C);
+      Mechanics::Matrix3 C, S;
+      Mechanics::right_cauchy_green(F, C);
       const double E11 = 0.5 * (C[0] - 1.), E22 = 0.5 * (C[4] - 1.),
                    E33 = 0.5 * (C[8] - 1.);
       const double E12 = 0.5 * C[1], E13 = 0.5 * C[2], E23 = 0.5 * C[5];
@@ -45,7 +45,7 @@ namespace YarnImpact
       S[1] = S[3] = 2. * G12 * E12;
       S[2] = S[6] = 2. * G12 * E13;
       S[5] = S[7] = 2. * G23 * E23;
-      internal::first_piola(F, S, P);
+      Mechanics::first_piola(F, S, P);
       inv.elongation = 0.5 * std::log(C[0]);
       return 0.5 * (S[0] * E11 + S[4] * E22 + S[8] * E33) +
              2. * (S[1] * E12 + S[2] * E13 + S[5] * E23) * 0.5;

@@ -14,6 +14,7 @@ namespace YarnImpact
     void
     Parameters::declare_parameters(ParameterHandler &prm)
     {
+      FailureParameters::declare_parameters(prm);
       prm.enter_subsection("FE");
       prm.declare_entry(
         "Constitutive law",
@@ -161,6 +162,7 @@ namespace YarnImpact
     void
     Parameters::parse_parameters(ParameterHandler &prm)
     {
+      failure.parse_parameters(prm);
       prm.enter_subsection("FE");
       law                       = (prm.get("Constitutive law") == "Charmetant"
                                      ? LawType::charmetant

@@ -3,7 +3,7 @@
 // estimate.
 
 #include <yarn_impact/core/parameter_tools.h>
-#include <yarn_impact/fe/cell_kernel.h>
+#include <yarn_impact/fe/failure_law.h>
 #include <yarn_impact/fe/fe_model.h>
 
 #include <cmath>
@@ -51,9 +51,9 @@ namespace YarnImpact
               "FE/Cells along the axis",
               "is too small: cells longer than the projectile radius cannot "
               "resolve the contact");
+      const FailureParameters &failure = parameters.failure;
       if (shared.yarn.failure &&
-          shared.yarn.failure_model ==
-            YarnImpact::Parameters::Yarn::FailureModel::progressive)
+          failure.model == FailureParameters::Model::progressive)
         {
           require(parameters.law == LawType::charmetant,
                   "Yarn/Failure model",
@@ -67,13 +67,12 @@ namespace YarnImpact
           const double h = shared.yarn.length / parameters.n_axial_cells /
                            std::pow(2., parameters.global_refinements);
           // The largest onset is at the back face (doc/theory.md 5.4).
-          FailureLaw onset;
-          onset.onset_log_stretch = std::log1p(shared.yarn.damage_onset_strain);
-          onset.onset_spread      = shared.yarn.damage_onset_spread;
-          const double I_0        = onset.onset_log_stretch_at(1.);
+          const FailureLaw law =
+            make_failure_law(shared.yarn, failure, parameters.charmetant.k_e);
+          const double I_0   = law.onset_log_stretch_at(1.);
           const double G_min = 0.5 * h * parameters.charmetant.k_e * I_0 * I_0;
           std::ostringstream s;
-          s << "= " << shared.yarn.fracture_energy
+          s << "= " << failure.fracture_energy
             << " J/m^2 is not above the elastic energy per unit area of a "
             << h * 1e3
             << " mm cell at the largest damage onset strain (Damage onset "
@@ -81,20 +80,16 @@ namespace YarnImpact
             << G_min
             << " J/m^2: its softening would snap back (raise it or refine "
                "FE/Cells along the axis)";
-          require(shared.yarn.fracture_energy > G_min,
+          require(failure.fracture_energy > G_min,
                   "Yarn/Fracture energy",
                   s.str());
-          if (shared.yarn.softening_tail_stress > 0.)
+          if (failure.softening_tail_stress > 0.)
             {
               // The bilinear envelope must fall on both branches in the
               // longest cell at the largest onset, where both margins are
               // smallest: I_0 < I_k < I_u (doc/theory.md section 5.5).
-              onset.fracture_energy   = shared.yarn.fracture_energy;
-              onset.fibre_modulus     = parameters.charmetant.k_e;
-              onset.tail_stress_ratio = shared.yarn.softening_tail_stress;
-              onset.tail_energy       = shared.yarn.softening_tail_energy;
-              const double I_k        = onset.kink_log_stretch(h, I_0);
-              const double I_u        = onset.final_log_stretch(h, I_0);
+              const double I_k = law.kink_log_stretch(h, I_0);
+              const double I_u = law.final_log_stretch(h, I_0);
               std::ostringstream k;
               k << "leaves the first branch of the softening curve of a "
                 << h * 1e3 << " mm cell at the largest onset ending at the "
@@ -104,7 +99,7 @@ namespace YarnImpact
               require(I_k > I_0, "Yarn/Softening tail energy", k.str());
               std::ostringstream u;
               u << "is too small for Softening tail stress = "
-                << shared.yarn.softening_tail_stress << ": the tail of a "
+                << failure.softening_tail_stress << ": the tail of a "
                 << h * 1e3 << " mm cell at the largest onset would end at "
                 << "the fibre log-stretch " << I_u << ", not beyond its kink "
                 << I_k << " (raise it, or lower Softening tail stress)";

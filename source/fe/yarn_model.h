@@ -185,8 +185,8 @@ namespace YarnImpact
       std::vector<unsigned char> cell_axis;
       std::vector<unsigned int> cell_layer;
       std::vector<double> cell_volume;
-      /** The failure law of the force loop (from Yarn/Failure, Failure
-       * strain, Failure model, Fracture energy). */
+      /** The failure law of the force loop (make_failure_law() of
+       * Yarn/Failure, Failure strain and the FE's FailureParameters). */
       FailureLaw failure_law;
 
       // Owned nodes: local indices of their x, y, z dofs and their station.

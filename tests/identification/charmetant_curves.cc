@@ -27,10 +27,10 @@ namespace
       const std::string &loading,
       const double pressure,
       const double strain,
-      const FE::Matrix3 &F)
+      const Mechanics::Matrix3 &F)
   {
-    FE::Matrix3 P;
-    FE::Invariants inv;
+    Mechanics::Matrix3 P;
+    Mechanics::Invariants inv;
     law.stress(F, P, inv);
     double tau[9];
     for (unsigned int i = 0; i < 3; ++i)
@@ -65,8 +65,8 @@ main(int argc, char **argv)
   t << header << '\n';
   for (unsigned int k = 0; k <= 40; ++k)
     {
-      const double e      = 0.045 * k / 40.;
-      const FE::Matrix3 F = {1. + e, 0., 0., 0., 1., 0., 0., 0., 1.};
+      const double e             = 0.045 * k / 40.;
+      const Mechanics::Matrix3 F = {1. + e, 0., 0., 0., 1., 0., 0., 0., 1.};
       row(t, law, "tension", 0., e, F);
     }
 
@@ -78,7 +78,8 @@ main(int argc, char **argv)
     {
       const double e  = 0.3 * k / 40.;
       const double ly = 1. - e, lz = std::pow(ly, -0.6);
-      const FE::Matrix3 F = {1., 0., 0., 0., ly, 0.02 * e, 0., -0.01 * e, lz};
+      const Mechanics::Matrix3 F =
+        {1., 0., 0., 0., ly, 0.02 * e, 0., -0.01 * e, lz};
       row(cp, law, "compaction", 0., e, F);
     }
 
@@ -91,7 +92,7 @@ main(int argc, char **argv)
       {
         const double e  = 0.3 * k / 40.;
         const double ly = area * (1. - e), lz = area / (1. - e);
-        const FE::Matrix3 F = {1., 0., 0., 0., ly, 0., 0., 0., lz};
+        const Mechanics::Matrix3 F = {1., 0., 0., 0., ly, 0., 0., 0., lz};
         row(d, law, "distortion", area < 0.95 ? 5e7 : 1e7, e, F);
       }
   return 0;

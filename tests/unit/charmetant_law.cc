@@ -12,6 +12,8 @@
 #include <random>
 
 using namespace YarnImpact::FE;
+using YarnImpact::Mechanics::Invariants;
+using YarnImpact::Mechanics::Matrix3;
 
 namespace
 {

@@ -1,6 +1,7 @@
 #ifndef yarn_impact_analysis_run_summary_h
 #define yarn_impact_analysis_run_summary_h
 
+#include <yarn_impact/analysis/parameters.h>
 #include <yarn_impact/core/history.h>
 #include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/impact_simulation.h>
@@ -48,26 +49,29 @@ namespace YarnImpact
     /**
      * What analysis adds to a run of the time loop: the wave fronts of each
      * history row, measured on the model's station profile with the
-     * thresholds of @p parameters (Wave fronts), and Smith's solution in
-     * the set-up report.
+     * thresholds of @p analysis (Wave fronts), and Smith's solution for the
+     * projectile of @p shared in the set-up report.
      */
     RunHooks
-    run_hooks(const Parameters::Shared &parameters);
+    run_hooks(const YarnImpact::Parameters::Shared &shared,
+              const Parameters &analysis);
 
     /**
      * Summarise a finished run: the history samples, the Smith-theory
      * quantities in the verification window and the checks that
-     * @p parameters (Verification) ask for.
+     * @p analysis (Verification) asks for.
      * @param result what the time loop returned
      * @param rows its history
      * @param axial the model's axial properties (Smith's solution)
-     * @param parameters the shared parameters of the run
+     * @param shared the shared parameters of the run
+     * @param analysis its window and checks
      */
     RunSummary
     summarise_run(const RunResult &result,
                   const std::vector<HistoryRow> &rows,
                   const AxialProperties &axial,
-                  const Parameters::Shared &parameters);
+                  const YarnImpact::Parameters::Shared &shared,
+                  const Parameters &analysis);
   } // namespace Analysis
 
   /** Write @p summary (and the Smith references it quotes) as text. */

@@ -1,8 +1,8 @@
 #ifndef yarn_impact_analysis_wave_fronts_h
 #define yarn_impact_analysis_wave_fronts_h
 
+#include <yarn_impact/analysis/parameters.h>
 #include <yarn_impact/core/observables.h>
-#include <yarn_impact/core/parameters.h>
 
 namespace YarnImpact
 {
@@ -15,7 +15,7 @@ namespace YarnImpact
      */
     WaveFrontPositions
     measure_wave_fronts(const StationProfile &profile,
-                        const Parameters::WaveFronts &thresholds);
+                        const WaveFrontThresholds &thresholds);
   } // namespace Analysis
 } // namespace YarnImpact
 

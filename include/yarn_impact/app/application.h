@@ -1,11 +1,12 @@
 #ifndef yarn_impact_app_application_h
 #define yarn_impact_app_application_h
 
+#include <yarn_impact/analysis/parameters.h>
 #include <yarn_impact/app/model_factory.h>
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/coupling/hybrid_model.h>
 #include <yarn_impact/dem/dem_model.h>
-#include <yarn_impact/dem/elementary_test.h>
+#include <yarn_impact/dem/elementary/elementary_test.h>
 #include <yarn_impact/fe/parameters.h>
 
 #include <iosfwd>
@@ -25,6 +26,8 @@ namespace YarnImpact
     /** Model(s) to run (entry `Model`). */
     ModelType model = ModelType::fe;
     Parameters::Shared shared;
+    /** Wave fronts and verification (analysis/). */
+    Analysis::Parameters analysis;
     FE::Parameters fe;
     DEM::Parameters dem;
     Coupling::HybridParameters hybrid;

@@ -11,10 +11,10 @@ namespace dealii
 namespace YarnImpact
 {
   /**
-   * Parameters shared by both models: the yarn, the projectile, symmetry,
-   * time integration, output, wave-front definitions and the verification
-   * window. One struct per `.prm` subsection, in the manner of step-44.
-   * Every quantity is in SI units.
+   * Parameters shared by every model: the yarn, the projectile, symmetry,
+   * time integration and output (what is measured on a run is declared by
+   * analysis/parameters.h, each model's own by its folder). One struct per
+   * `.prm` subsection, in the manner of step-44. Every quantity is in SI units.
    */
   namespace Parameters
   {
@@ -66,42 +66,6 @@ namespace YarnImpact
       double failure_strain = 0.0452;
       /** Whether failure (broken trusses, failed cells) is modelled. */
       bool failure = true;
-      /** How an FE cell fails (the DEM's trusses always break at once at
-       * failure_strain). */
-      enum class FailureModel
-      {
-        /** The paper's criterion: a cell whose largest Gauss-point
-         * ln(lambda_f) passes ln(1 + failure_strain) drops all its stress
-         * in one step. */
-        sudden,
-        /** Crack-band softening of the fibre term between the onset at
-         * failure_strain and a final strain set by fracture_energy and the
-         * cell's length along the fibre (doc/theory.md section 5). */
-        progressive
-      };
-      /** The FE failure model. */
-      FailureModel failure_model = FailureModel::sudden;
-      /** Largest Gauss-point fibre strain of an FE cell at which its
-       * progressive fibre damage starts [-] (the sudden model and the DEM
-       * use failure_strain). */
-      double damage_onset_strain = 0.0347;
-      /** Progressive failure model: relative growth of the damage onset
-       * strain across the thickness [-]: a cell's onset is
-       * damage_onset_strain (1 + spread depth), depth 0 at the face the
-       * projectile strikes and 1 at the opposite face (doc/theory.md
-       * section 5.4). 0: the same onset in every cell. */
-      double damage_onset_spread = 0.;
-      /** Energy dissipated per unit area of a crack across the yarn by the
-       * progressive failure model, G_f [J/m^2]. */
-      double fracture_energy = 5.41e4;
-      /** Progressive failure model: the fibre stress at the kink of a
-       * bilinear softening envelope, as a fraction of the onset stress
-       * [-]; 0: the linear envelope (doc/theory.md section 5.5). */
-      double softening_tail_stress = 0.;
-      /** Progressive failure model: the part of fracture_energy that the
-       * tail of the bilinear envelope dissipates [J/m^2]. */
-      double softening_tail_energy = 0.;
-
       /** Area of the elliptical section, \f$\pi a_y a_z\f$ [m^2]. */
       double
       section_area() const;
@@ -205,58 +169,6 @@ namespace YarnImpact
       parse_parameters(dealii::ParameterHandler &prm);
     };
 
-    /**
-     * Thresholds that define the wave fronts, identical for both models
-     * (subsection `Wave fronts`, see analysis/wave_fronts.h).
-     */
-    struct WaveFronts
-    {
-      /** Longitudinal front: outermost station whose axial strain exceeds
-       * this value [-]. */
-      double strain_threshold = 2e-4;
-      /** Transverse front: outermost station whose deflection (towards -y)
-       * exceeds this value [m]. */
-      double deflection_threshold = 10e-6;
-      /** Spreading front: outermost station whose section width exceeds the
-       * initial width by this fraction [-]. */
-      double spreading_threshold = 0.02;
-
-      static void
-      declare_parameters(dealii::ParameterHandler &prm);
-      void
-      parse_parameters(dealii::ParameterHandler &prm);
-    };
-
-    /**
-     * Time window in which the run is compared with Smith theory (subsection
-     * `Verification`): before the first reflected longitudinal wave returns
-     * to the impact point the yarn behaves as an infinite one.
-     */
-    struct Verification
-    {
-      /** Start of the window [s]. */
-      double window_start = 1e-6;
-      /** End of the window [s]. */
-      double window_end = 3e-6;
-      /** Checks to assert at the end of the run; a failed check makes the
-       * run exit with a non-zero code. */
-      bool check_deceleration       = false;
-      bool check_plateau_strain     = false;
-      bool check_longitudinal_speed = false;
-      bool check_transverse_speed   = false;
-      bool check_energy             = false;
-      /** Relative tolerance of the Smith-theory checks [-]. */
-      double tolerance = 0.03;
-      /** Largest energy error allowed by the energy check, as a fraction of
-       * the initial energy [-]. */
-      double energy_tolerance = 0.005;
-
-      static void
-      declare_parameters(dealii::ParameterHandler &prm);
-      void
-      parse_parameters(dealii::ParameterHandler &prm);
-    };
-
     /** All shared parameters. */
     struct Shared
     {
@@ -265,8 +177,6 @@ namespace YarnImpact
       Projectile projectile;
       Time time;
       Output output;
-      WaveFronts wave_fronts;
-      Verification verification;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

@@ -1,8 +1,9 @@
 #ifndef yarn_impact_fe_charmetant_law_h
 #define yarn_impact_fe_charmetant_law_h
 
-#include <yarn_impact/fe/kinematics.h>
 #include <yarn_impact/fe/parameters.h>
+#include <yarn_impact/fe/simd.h>
+#include <yarn_impact/mechanics/kinematics.h>
 
 #include <cmath>
 
@@ -43,7 +44,9 @@ namespace YarnImpact
        * @return strain energy density W [J/m^3]
        */
       double
-      stress(const Matrix3 &F, Matrix3 &P, Invariants &inv) const;
+      stress(const Mechanics::Matrix3 &F,
+             Mechanics::Matrix3 &P,
+             Mechanics::Invariants &inv) const;
 
       /**
        * Second Piola-Kirchhoff stress S = 2 dW/dC from the right
@@ -51,10 +54,10 @@ namespace YarnImpact
        * @return W [J/m^3]
        */
       double
-      second_piola(const Matrix3 &C,
+      second_piola(const Mechanics::Matrix3 &C,
                    const double J,
-                   Matrix3 &S,
-                   Invariants &inv) const;
+                   Mechanics::Matrix3 &S,
+                   Mechanics::Invariants &inv) const;
 
       /**
        * Energy density as a function of C, templated so that it can be
@@ -101,7 +104,7 @@ namespace YarnImpact
        * |I_{tc}|^{p-2}\f$ (doc/theory.md section 1.6), bounded at the
        * reference state by its value at |I_tc| = 1e-3 [Pa]. */
       double
-      transverse_modulus(const Invariants &inv) const;
+      transverse_modulus(const Mechanics::Invariants &inv) const;
 
       /** Uniaxial nominal stress \f$P(\varepsilon) = k_e
        * \ln(1+\varepsilon)/(1+\varepsilon)\f$ [Pa]. */
@@ -208,18 +211,18 @@ namespace YarnImpact
                                  V &Itd) const
     {
       V C[9], S[9];
-      const V J = internal::right_cauchy_green(F, C);
+      const V J = Mechanics::right_cauchy_green(F, C);
       const V W = second_piola_kernel(C, J, S, Ie, Itc, Itd);
-      internal::first_piola(F, S, P);
+      Mechanics::first_piola(F, S, P);
       return W;
     }
 
 
     inline double
-    CharmetantLaw::second_piola(const Matrix3 &C,
+    CharmetantLaw::second_piola(const Mechanics::Matrix3 &C,
                                 const double J,
-                                Matrix3 &S,
-                                Invariants &inv) const
+                                Mechanics::Matrix3 &S,
+                                Mechanics::Invariants &inv) const
     {
       return second_piola_kernel(C,
                                  J,
@@ -231,7 +234,9 @@ namespace YarnImpact
 
 
     inline double
-    CharmetantLaw::stress(const Matrix3 &F, Matrix3 &P, Invariants &inv) const
+    CharmetantLaw::stress(const Mechanics::Matrix3 &F,
+                          Mechanics::Matrix3 &P,
+                          Mechanics::Invariants &inv) const
     {
       return stress_kernel(F,
                            P,
@@ -239,11 +244,6 @@ namespace YarnImpact
                            inv.compaction,
                            inv.distortion);
     }
-
-
-    /** Compute the invariants of the Charmetant law from F (row-major). */
-    Invariants
-    charmetant_invariants(const Matrix3 &F);
 
 
     template <typename Number>

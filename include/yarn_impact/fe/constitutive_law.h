@@ -2,9 +2,9 @@
 #define yarn_impact_fe_constitutive_law_h
 
 #include <yarn_impact/fe/charmetant_law.h>
-#include <yarn_impact/fe/kinematics.h>
 #include <yarn_impact/fe/linear_transversely_isotropic_law.h>
 #include <yarn_impact/fe/parameters.h>
+#include <yarn_impact/mechanics/kinematics.h>
 
 #include <stdexcept>
 #include <type_traits>
@@ -23,7 +23,8 @@ namespace YarnImpact
      * interface. A class `Law` is a constitutive law when a `const Law`
      * provides
      *
-     * - `double stress(const Matrix3 &F, Matrix3 &P, Invariants &inv)`:
+     * - `double stress(const Matrix3 &F, Matrix3 &P, Invariants &inv)`
+     *   (Matrix3 and Invariants of mechanics/kinematics.h):
      *   the first Piola-Kirchhoff stress P [Pa] (row-major) at the
      *   deformation gradient F (row-major, fibre direction x), returning
      *   the strain-energy density W [J/m^3]. It must fill
@@ -77,19 +78,20 @@ namespace YarnImpact
     check_law_contract()
     {
       const Law *law = nullptr;
-      static_assert(
-        std::is_same_v<decltype(law->stress(std::declval<const Matrix3 &>(),
-                                            std::declval<Matrix3 &>(),
-                                            std::declval<Invariants &>())),
-                       double>,
-        "a law needs double stress(F, P, inv) const");
+      static_assert(std::is_same_v<decltype(law->stress(
+                                     std::declval<const Mechanics::Matrix3 &>(),
+                                     std::declval<Mechanics::Matrix3 &>(),
+                                     std::declval<Mechanics::Invariants &>())),
+                                   double>,
+                    "a law needs double stress(F, P, inv) const");
       static_assert(
         std::is_convertible_v<decltype(law->axial_modulus()), double>,
         "a law needs double axial_modulus() const");
-      static_assert(std::is_convertible_v<decltype(law->transverse_modulus(
-                                            std::declval<Invariants>())),
-                                          double>,
-                    "a law needs double transverse_modulus(inv) const");
+      static_assert(
+        std::is_convertible_v<decltype(law->transverse_modulus(
+                                std::declval<Mechanics::Invariants>())),
+                              double>,
+        "a law needs double transverse_modulus(inv) const");
       static_assert(
         std::is_convertible_v<decltype(law->uniaxial_nominal_stress(0.)),
                               double>,

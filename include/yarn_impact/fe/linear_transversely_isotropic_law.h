@@ -1,8 +1,8 @@
 #ifndef yarn_impact_fe_linear_transversely_isotropic_law_h
 #define yarn_impact_fe_linear_transversely_isotropic_law_h
 
-#include <yarn_impact/fe/kinematics.h>
 #include <yarn_impact/fe/parameters.h>
+#include <yarn_impact/mechanics/kinematics.h>
 
 namespace YarnImpact
 {
@@ -32,7 +32,9 @@ namespace YarnImpact
       /** First Piola-Kirchhoff stress and energy density, as
        * CharmetantLaw::stress(); the invariants are filled too. */
       double
-      stress(const Matrix3 &F, Matrix3 &P, Invariants &inv) const;
+      stress(const Mechanics::Matrix3 &F,
+             Mechanics::Matrix3 &P,
+             Mechanics::Invariants &inv) const;
 
       /** Axial P-wave modulus \f$\mathbb{C}_{1111}\f$ [Pa]. */
       double
@@ -43,7 +45,7 @@ namespace YarnImpact
 
       /** Transverse P-wave modulus \f$\mathbb{C}_{2222}\f$ [Pa]. */
       double
-      transverse_modulus(const Invariants &) const
+      transverse_modulus(const Mechanics::Invariants &) const
       {
         return C22;
       }

@@ -2,6 +2,7 @@
 #define yarn_impact_fe_parameters_h
 
 #include <yarn_impact/contact/contact_law.h>
+#include <yarn_impact/fe/failure_law.h>
 
 #include <functional>
 #include <string>
@@ -100,6 +101,8 @@ namespace YarnImpact
       CharmetantParameters charmetant;
       LinearParameters linear;
       ContactParameters contact;
+      /** How a cell fails (entries of subsection `Yarn`). */
+      FailureParameters failure;
 
       /**
        * Set by a coupling (`Model = hybrid`, coupling/hybrid_model.h), never

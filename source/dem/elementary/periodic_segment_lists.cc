@@ -1,7 +1,7 @@
 // The neighbour lists of the periodic segment of the DEM elementary tests:
 // a cell search on the section plane with the nearest periodic image along
 // x, keeping the tangential history of the pairs listed before.
-#include <yarn_impact/dem/periodic_segment.h>
+#include <yarn_impact/dem/elementary/periodic_segment.h>
 
 #include <algorithm>
 #include <limits>

@@ -1,5 +1,5 @@
 #include <yarn_impact/core/parameter_tools.h>
-#include <yarn_impact/dem/elementary_test.h>
+#include <yarn_impact/dem/elementary/elementary_test.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>

@@ -1,12 +1,12 @@
-#ifndef yarn_impact_dem_periodic_segment_h
-#define yarn_impact_dem_periodic_segment_h
+#ifndef yarn_impact_dem_elementary_periodic_segment_h
+#define yarn_impact_dem_elementary_periodic_segment_h
 
 #include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/dem/elementary_test.h>
+#include <yarn_impact/dem/elementary/elementary_test.h>
 #include <yarn_impact/dem/parameters.h>
 #include <yarn_impact/dem/truss.h>
-#include <yarn_impact/fe/constitutive_law.h>
+#include <yarn_impact/mechanics/kinematics.h>
 
 #include <mpi.h>
 
@@ -100,7 +100,7 @@ namespace YarnImpact
         /** Affine deformation gradient of the spheres (least-squares fit
          * of the current (y, z) to the reference ones), row-major 3x3. */
         void
-        affine_gradient(FE::Matrix3 &F) const;
+        affine_gradient(Mechanics::Matrix3 &F) const;
 
         /** Centred second moments <y^2>, <z^2> of the sphere centres
          * [m^2]. */

@@ -1,8 +1,8 @@
-#ifndef yarn_impact_dem_elementary_test_h
-#define yarn_impact_dem_elementary_test_h
+#ifndef yarn_impact_dem_elementary_elementary_test_h
+#define yarn_impact_dem_elementary_elementary_test_h
 
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/dem/dem_model.h>
+#include <yarn_impact/dem/parameters.h>
 
 #include <mpi.h>
 

@@ -1,6 +1,6 @@
 // The forces on the periodic segment of the DEM elementary tests: trusses
 // (with failure), fibre contacts, the rigid walls and the local damping.
-#include <yarn_impact/dem/periodic_segment.h>
+#include <yarn_impact/dem/elementary/periodic_segment.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // What the elementary tests measure on the periodic segment: the sums of
 // one CSV row (virial, energies), the affine deformation gradient of the
 // section, its second moments and extent, and the fibres' break strains.
-#include <yarn_impact/dem/periodic_segment.h>
+#include <yarn_impact/dem/elementary/periodic_segment.h>
 
 #include <algorithm>
 #include <cmath>
@@ -72,7 +72,7 @@ namespace YarnImpact
 
 
       void
-      PeriodicSegment::affine_gradient(FE::Matrix3 &F) const
+      PeriodicSegment::affine_gradient(Mechanics::Matrix3 &F) const
       {
         double mx[2] = {0., 0.}, mX[2] = {0., 0.};
         for (std::size_t i = 0; i < n; ++i)

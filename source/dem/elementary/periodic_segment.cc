@@ -6,8 +6,8 @@
 // periodic_segment_measures.cc.
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/dem/elementary/periodic_segment.h>
 #include <yarn_impact/dem/packing.h>
-#include <yarn_impact/dem/periodic_segment.h>
 
 #include <deal.II/base/mpi.h>
 

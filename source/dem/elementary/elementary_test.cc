@@ -7,9 +7,9 @@
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
-#include <yarn_impact/dem/elementary_test.h>
-#include <yarn_impact/dem/periodic_segment.h>
-#include <yarn_impact/fe/constitutive_law.h>
+#include <yarn_impact/dem/elementary/elementary_test.h>
+#include <yarn_impact/dem/elementary/periodic_segment.h>
+#include <yarn_impact/mechanics/kinematics.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -60,8 +60,8 @@ namespace YarnImpact
       {
         std::string phase;
         double pressure = 0., time = 0., strain = 0.;
-        FE::Matrix3 F;
-        FE::Invariants inv;
+        Mechanics::Matrix3 F;
+        Mechanics::Invariants inv;
         double height = 0., width = 0.;
         double tau[4]          = {0., 0., 0., 0.}; // xx yy zz yz [Pa]
         double tau_boundary[2] = {0., 0.};         // yy zz [Pa]
@@ -123,7 +123,7 @@ namespace YarnImpact
           r.time     = seg.time;
           r.strain   = strain;
           seg.affine_gradient(r.F);
-          r.inv             = FE::charmetant_invariants(r.F);
+          r.inv             = Mechanics::invariants(r.F);
           const auto m      = seg.second_moments();
           r.height          = 4. * std::sqrt(m.first);
           r.width           = 4. * std::sqrt(m.second);
