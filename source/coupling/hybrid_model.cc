@@ -71,7 +71,8 @@ namespace YarnImpact
               out << "the clamp in " << layout.fe_cells << " cells; ";
             if (layout.fibre_bars)
               out << "far field: " << bars.n_fibres << " fibres of "
-                  << bars.n_layers - 1 << " bars; ";
+                  << bars.n_nodes - 1 << " bars (" << bars.bars_per_cell
+                  << " per FE cell); ";
             for (const Overlap *o : overlaps())
               out << o->constraint.n_nodes() << " coupled FE nodes, "
                   << o->constraint.n_particles() << " coupled spheres; ";
