@@ -11,7 +11,6 @@
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/projectile.h>
 #include <yarn_impact/core/time_stepping.h>
-#include <yarn_impact/fe/fe_model.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -50,7 +49,7 @@ main(int argc, char **argv)
       AllParameters p;
       p.parse_parameters(prm);
 
-      auto model = FE::create_model(p.shared, p.fe, comm);
+      auto model = create_model("fe", p, comm);
       Projectile projectile(p.shared.projectile,
                             p.shared.yarn.thickness_semi_axis);
       std::ostringstream sink;
@@ -93,7 +92,7 @@ main(int argc, char **argv)
       std::ostringstream sink;
       dealii::Timer timer;
       ImpactSimulation simulation(p.shared,
-                                  FE::create_model(p.shared, p.fe, comm),
+                                  create_model("fe", p, comm),
                                   comm,
                                   sink,
                                   Analysis::run_hooks(p.shared, p.analysis));

@@ -5,10 +5,10 @@
 #include <yarn_impact/app/output_directory.h>
 #include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/impact_simulation.h>
+#include <yarn_impact/core/model_registry.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/output_lock.h>
 #include <yarn_impact/core/parameter_tools.h>
-#include <yarn_impact/fe/fe_model.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -79,9 +79,7 @@ namespace YarnImpact
     declare_model_type(prm);
     Parameters::Shared::declare_parameters(prm);
     Analysis::Parameters::declare_parameters(prm);
-    FE::Parameters::declare_parameters(prm);
-    DEM::Parameters::declare_parameters(prm);
-    Coupling::HybridParameters::declare_parameters(prm);
+    ModelRegistry::declare_parameters(prm);
     DEM::ElementaryTestParameters::declare_parameters(prm);
   }
 
@@ -91,12 +89,17 @@ namespace YarnImpact
     model = parse_model_type(prm);
     shared.parse_parameters(prm);
     analysis.parse_parameters(prm, shared);
-    fe.parse_parameters(prm);
+    models.clear();
+    for (const std::string &name : ModelRegistry::names())
+      {
+        std::shared_ptr<ModelPlugin> plugin = ModelRegistry::make(name);
+        plugin->parse_parameters(prm);
+        models.emplace(name, std::move(plugin));
+      }
     dem.parse_parameters(prm);
-    hybrid.parse_parameters(prm);
     elementary.parse_parameters(prm);
     Parameters::require(elementary.loading == DEM::ElementaryLoading::none ||
-                          model == ModelType::dem,
+                          model == "dem",
                         "Elementary test/Loading",
                         "is a loading of the DEM model: it needs Model = dem");
     // Every set-up check that needs no MPI ranks is made here, so that
@@ -104,15 +107,9 @@ namespace YarnImpact
     // writes anything (with Model = both, before the FE part runs).
     if (elementary.loading != DEM::ElementaryLoading::none)
       DEM::validate(shared, dem, true);
-    else if (model == ModelType::hybrid)
-      Coupling::validate(shared, fe, dem, hybrid);
     else
-      {
-        if (model != ModelType::dem)
-          FE::validate(shared, fe);
-        if (model != ModelType::fe)
-          DEM::validate(shared, dem);
-      }
+      for (const std::string &name : run_models())
+        models.at(name)->validate(shared);
   }
 
   AllParameters
@@ -313,18 +310,14 @@ namespace YarnImpact
             return 0;
           }
 
-        std::vector<ModelType> models;
-        if (parameters.model == ModelType::both)
-          models = {ModelType::fe, ModelType::dem};
-        else
-          models = {parameters.model};
+        const std::vector<std::string> models = parameters.run_models();
 
         bool passed = true;
         std::ostringstream summary_text;
         std::vector<std::vector<HistoryRow>> histories;
         std::string run_errors;
         double mass_per_length[2] = {0., 0.}, axial_stiffness[2] = {0., 0.};
-        for (const auto type : models)
+        for (const std::string &type : models)
           {
             CheckpointOptions checkpoints;
             checkpoints.restart = restart;

@@ -1,8 +1,6 @@
 #include <yarn_impact/app/application.h>
 #include <yarn_impact/app/model_factory.h>
-#include <yarn_impact/coupling/hybrid_model.h>
-#include <yarn_impact/dem/dem_model.h>
-#include <yarn_impact/fe/fe_model.h>
+#include <yarn_impact/core/model_registry.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -10,6 +8,7 @@
 #include <limits>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,9 +17,16 @@ namespace YarnImpact
   void
   declare_model_type(dealii::ParameterHandler &prm)
   {
+    // A new model adds its value and a sentence here; a registered model
+    // that `Model` cannot name is a programming error.
+    const std::string values = "fe|dem|both|hybrid";
+    for (const std::string &name : ModelRegistry::names())
+      if (("|" + values + "|").find("|" + name + "|") == std::string::npos)
+        throw std::logic_error("the registered model '" + name +
+                               "' is not a value of the entry Model");
     prm.declare_entry("Model",
                       "fe",
-                      dealii::Patterns::Selection("fe|dem|both|hybrid"),
+                      dealii::Patterns::Selection(values),
                       "Model to run: the mesoscopic finite-element yarn "
                       "(fe), the microscopic discrete-element fibres (dem), "
                       "both on the same problem (both), or the hybrid yarn: "
@@ -30,31 +36,28 @@ namespace YarnImpact
   }
 
 
-  ModelType
+  std::string
   parse_model_type(dealii::ParameterHandler &prm)
   {
-    const std::string m = prm.get("Model");
-    return (m == "fe"       ? ModelType::fe
-            : m == "dem"    ? ModelType::dem
-            : m == "hybrid" ? ModelType::hybrid
-                            : ModelType::both);
+    return prm.get("Model");
+  }
+
+
+  std::vector<std::string>
+  model_names(const std::string &model)
+  {
+    if (model == "both")
+      return {"fe", "dem"};
+    return {model};
   }
 
 
   std::unique_ptr<ImpactModel>
-  create_model(const ModelType type,
+  create_model(const std::string &name,
                const AllParameters &p,
                const MPI_Comm communicator)
   {
-    if (type == ModelType::dem)
-      return DEM::create_model(p.shared, p.dem, communicator);
-    if (type == ModelType::hybrid)
-      return Coupling::create_hybrid_model(p.shared,
-                                           p.fe,
-                                           p.dem,
-                                           p.hybrid,
-                                           communicator);
-    return FE::create_model(p.shared, p.fe, communicator);
+    return p.models.at(name)->create(p.shared, communicator);
   }
 
 
@@ -102,7 +105,6 @@ namespace YarnImpact
                          const bool print,
                          std::ostream &out)
   {
-    const auto model = p.model;
     std::vector<std::string> lines;
     if (p.elementary.loading != DEM::ElementaryLoading::none)
       {
@@ -117,18 +119,9 @@ namespace YarnImpact
           out << lines.back() << '\n';
         return;
       }
-    if (model == ModelType::hybrid)
-      lines.push_back(
-        check_memory(Coupling::memory_estimate(p.shared, p.fe, p.dem, p.hybrid),
-                     "hybrid",
-                     MPI_COMM_WORLD));
-    else if (model != ModelType::dem)
-      lines.push_back(check_memory(FE::memory_estimate(p.shared, p.fe),
-                                   "fe",
-                                   MPI_COMM_WORLD));
-    if (model != ModelType::fe && model != ModelType::hybrid)
-      lines.push_back(check_memory(DEM::memory_estimate(p.shared, p.dem),
-                                   "dem",
+    for (const std::string &name : p.run_models())
+      lines.push_back(check_memory(p.models.at(name)->memory_estimate(p.shared),
+                                   name,
                                    MPI_COMM_WORLD));
     if (print && dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       for (const auto &line : lines)

@@ -5,6 +5,7 @@
 
 #include <yarn_impact/app/output_directory.h>
 #include <yarn_impact/core/checkpoint.h>
+#include <yarn_impact/core/model_registry.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/parameter_tools.h>
 
@@ -323,7 +324,7 @@ namespace YarnImpact
           const std::string earlier_file = dir + "/parameters.prm";
           std::string earlier, why;
           bool any = false;
-          for (const std::string name : {"fe", "dem", "hybrid"})
+          for (const std::string &name : ModelRegistry::names())
             any = any || fs::exists(Checkpoint::info_file(dir, name), ec);
           const bool finished = fs::exists(dir + "/summary.txt", ec);
           if (!fs::is_directory(dir, ec))

@@ -114,12 +114,35 @@ namespace YarnImpact
   RunResult
   ImpactSimulation::Implementation::run_timed(TimerOutput &timer)
   {
-    const auto &p      = parameters;
-    const bool verbose = p.output.verbosity == Parameters::Verbosity::normal;
-    const bool testing = p.output.verbosity == Parameters::Verbosity::test;
-    Timer wall_timer;
-    std::ostringstream setup_sink;
+    Loop loop(parameters.time, parameters.output);
+    std::string saved_state = set_up(loop, timer);
+    start(loop, timer, std::move(saved_state));
+    Checkpoint::SignalPoll signal_poll(communicator);
+    while (!loop.finished && loop.schedule.running())
+      {
+        start_step(loop, timer);
+        const double h          = advance_step(loop, timer);
+        const bool snapshot_due = loop.schedule.snapshot_due();
+        if (loop.schedule.history_due() || snapshot_due)
+          {
+            const HistoryRow row = check_row(loop, timer, h);
+            if (post_process(loop, timer, row, snapshot_due))
+              break;
+            maybe_checkpoint(loop, timer);
+          }
+        checkpoint_on_signal(loop, timer, signal_poll);
+        report_progress(loop, h);
+      }
+    return finish(loop, timer);
+  }
 
+
+  std::string
+  ImpactSimulation::Implementation::set_up(Loop &loop, TimerOutput &timer)
+  {
+    const auto &p      = parameters;
+    const bool testing = p.output.verbosity == Parameters::Verbosity::test;
+    std::ostringstream setup_sink;
     {
       TimerOutput::Scope scope(timer, "set-up");
       // The set-up report once, from rank 0, whatever the model does.
@@ -134,33 +157,29 @@ namespace YarnImpact
     std::string saved_state;
     if (checkpoints.restart)
       checkpoint_info = Checkpoint::read(dir, name, communicator, saved_state);
-    const bool restarted = checkpoint_info.generation > 0;
-    if (!restarted)
+    if (checkpoint_info.generation == 0)
       collective_output(communicator, [&] {
         history = std::make_unique<History>(dir, name, is_root);
       });
 
-    Schedule schedule(p.time, p.output);
+    Schedule &schedule = loop.schedule;
     schedule.set_critical_step(model->stable_time_step());
-    const auto axial = model->axial_properties();
-    {
-      const double dt = schedule.time_step();
-      if (!(dt > 0.) || p.time.end_time / dt > double(p.time.max_steps))
-        {
-          std::ostringstream s;
-          s << "the " << name << " model's stable time step " << dt
-            << " s would need " << p.time.end_time / dt
-            << " steps to reach Time/End time = " << p.time.end_time
-            << " s, more than Time/Maximum number of steps = "
-            << p.time.max_steps
-            << " (a modulus, density or penalty with wrong units, or an "
-               "impact velocity no explicit model can follow?)";
-          throw InputError(s.str());
-        }
-    }
+    loop.axial      = model->axial_properties();
+    const double dt = schedule.time_step();
+    if (!(dt > 0.) || p.time.end_time / dt > double(p.time.max_steps))
+      {
+        std::ostringstream s;
+        s << "the " << name << " model's stable time step " << dt
+          << " s would need " << p.time.end_time / dt
+          << " steps to reach Time/End time = " << p.time.end_time
+          << " s, more than Time/Maximum number of steps = " << p.time.max_steps
+          << " (a modulus, density or penalty with wrong units, or an "
+             "impact velocity no explicit model can follow?)";
+        throw InputError(s.str());
+      }
     if (!testing)
       {
-        const double dt = schedule.time_step();
+        const auto &axial = loop.axial;
         out << std::setprecision(5) << "[" << name << "] yarn mass "
             << model->mass() * 1e6 << " mg, mass per length "
             << axial.mass_per_length() * 1e6 << " mg/m, EA "
@@ -172,63 +191,52 @@ namespace YarnImpact
         if (hooks.report_setup)
           hooks.report_setup(*model, is_root ? out.get_stream() : setup_sink);
       }
+    return saved_state;
+  }
 
-    const auto fail = [&](const std::string &cause) {
-      std::ostringstream s;
-      s << "numerical failure in the " << name << " model at step "
-        << schedule.step() << ", t = " << schedule.time() * 1e6
-        << " us: " << cause
-        << ". The last good snapshot and the history up to it are kept in "
-        << p.output.directory << ".";
-      throw RunError(s.str());
-    };
-    // Every energy of a row finite before it is written, or the run stops.
-    const auto check_finite = [&](const HistoryRow &row) {
-      const auto &m = row.model;
-      if (!std::isfinite(m.kinetic_energy) ||
-          !std::isfinite(m.elastic_energy) ||
-          !std::isfinite(m.contact_energy) ||
-          !std::isfinite(m.dissipated_energy))
-        fail("an energy is not a number (an inverted cell or a blow-up)");
-      if (!std::isfinite(row.projectile_kinetic_energy) ||
-          !std::isfinite(row.external_work) || !std::isfinite(row.energy_error))
-        fail("the projectile's kinetic energy, its work or the energy "
-             "balance error is not a finite number (Projectile/Mass or "
-             "Projectile/Impact velocity too large?)");
-    };
 
-    RunResult result;
-    std::string stop_reason = "end time reached";
-    double force            = 0.;
-    if (restarted)
+  void
+  ImpactSimulation::Implementation::start(Loop &loop,
+                                          TimerOutput &timer,
+                                          std::string saved_state)
+  {
+    const auto &p          = parameters;
+    const std::string name = model->name();
+    Schedule &schedule     = loop.schedule;
+    if (checkpoint_info.generation > 0)
       {
         TimerOutput::Scope scope(timer, "checkpoint");
         Checkpoint::Reader in(
-          Checkpoint::rank_file(dir,
+          Checkpoint::rank_file(p.output.directory,
                                 name,
                                 checkpoint_info.slot,
                                 Utilities::MPI::this_mpi_process(communicator)),
           std::move(saved_state));
-        load_checkpoint(in, schedule, force, result, stop_reason);
-        if (!testing)
+        load_checkpoint(in,
+                        schedule,
+                        loop.force,
+                        loop.result,
+                        loop.stop_reason);
+        if (p.output.verbosity != Parameters::Verbosity::test)
           out << "[" << name << "] restarted from its checkpoint at t = "
               << schedule.time() * 1e6 << " us, step " << schedule.step()
               << (checkpoint_info.completed ? " (its run had finished)" : "")
               << '\n';
+        loop.finished = checkpoint_info.completed;
       }
     else
       {
-        force = model->compute_forces(projectile, schedule.time_step());
+        loop.force = model->compute_forces(projectile, schedule.time_step());
         initial_energy = 0.;
         {
-          const auto r0  = make_row(0., 0, schedule.time_step(), force);
+          const auto r0  = make_row(0., 0, schedule.time_step(), loop.force);
           initial_energy = r0.projectile_kinetic_energy +
                            r0.model.kinetic_energy + r0.model.elastic_energy +
                            r0.model.contact_energy;
         }
         {
-          const auto row0 = make_row(0., 0, schedule.time_step(), force);
-          check_finite(row0);
+          const auto row0 = make_row(0., 0, schedule.time_step(), loop.force);
+          check_finite(loop, row0);
           add_history_row(row0);
         }
         if (schedule.snapshots_on())
@@ -238,182 +246,272 @@ namespace YarnImpact
           }
         next_checkpoint = p.output.checkpoint_interval;
       }
+    loop.result.model_name      = name;
+    loop.result.mass_per_length = model->mass() / p.yarn.length;
+    loop.result.axial_stiffness = loop.axial.axial_stiffness();
+    loop.t_start                = schedule.time();
+  }
 
-    result.model_name      = name;
-    result.mass_per_length = model->mass() / p.yarn.length;
-    result.axial_stiffness = axial.axial_stiffness();
-    double last_progress   = 0.;
-    double last_checkpoint = 0.;
-    const double eps_t     = schedule.epsilon();
-    const double t_start   = schedule.time();
-    const bool finished    = restarted && checkpoint_info.completed;
-    // What a checkpoint at a history row writes, and when it is due.
-    const auto write_checkpoint = [&](const bool completed) {
-      TimerOutput::Scope scope(timer, "checkpoint");
-      const double t = schedule.time();
-      if (p.output.checkpoint_interval > 0.)
-        advance_past(next_checkpoint, p.output.checkpoint_interval, t, eps_t);
-      checkpoint_info = Checkpoint::write(
-        dir,
-        name,
-        communicator,
-        checkpoint_info,
-        t,
-        schedule.step(),
-        completed,
-        checkpoint_state(schedule, force, result, stop_reason));
-      last_checkpoint = wall_timer.wall_time();
-    };
 
-    // The stop on a signal, after its checkpoint.
-    const auto stop_on = [&](const int signal) {
-      std::ostringstream s;
-      s << "the " << name << " run was stopped by "
-        << (signal == SIGINT ? "SIGINT" : "SIGTERM")
-        << " at t = " << schedule.time() * 1e6 << " us (step "
-        << schedule.step() << "); its state is saved in "
-        << Checkpoint::info_file(dir, name);
-      throw Interrupted(s.str());
-    };
-    Checkpoint::SignalPoll signal_poll(communicator);
+  void
+  ImpactSimulation::Implementation::start_step(Loop &loop, TimerOutput &timer)
+  {
+    if (!loop.schedule.time_step_update_due())
+      return;
+    double critical;
+    {
+      TimerOutput::Scope scope(timer, "stable time step");
+      critical = model->stable_time_step();
+    }
+    if (!std::isfinite(critical) || !(critical > 0.))
+      fail(loop,
+           "the stable time step is not a positive number (a collapsed or "
+           "inverted element?)");
+    loop.schedule.set_critical_step(critical);
+  }
 
-    while (!finished && schedule.running())
+
+  double
+  ImpactSimulation::Implementation::advance_step(Loop &loop, TimerOutput &timer)
+  {
+    Schedule &schedule = loop.schedule;
+    const double h     = schedule.next_step();
+    loop.force         = advance(*model, projectile, loop.force, h, &timer);
+    schedule.advance(h);
+    const auto max_steps = parameters.time.max_steps;
+    if (schedule.step() > max_steps)
       {
-        if (schedule.time_step_update_due())
-          {
-            double critical;
-            {
-              TimerOutput::Scope scope(timer, "stable time step");
-              critical = model->stable_time_step();
-            }
-            if (!std::isfinite(critical) || !(critical > 0.))
-              fail("the stable time step is not a positive number (a "
-                   "collapsed or inverted element?)");
-            schedule.set_critical_step(critical);
-          }
-        const double h = schedule.next_step();
-        force          = advance(*model, projectile, force, h, &timer);
-        schedule.advance(h);
-        const double t = schedule.time();
-        if (schedule.step() > p.time.max_steps)
-          {
-            std::ostringstream s;
-            s << "Time/Maximum number of steps = " << p.time.max_steps
-              << " reached (the stable time step fell to " << h << " s)";
-            fail(s.str());
-          }
-        if (!std::isfinite(force))
-          fail("the contact force is not a number");
-        if (!std::isfinite(projectile.velocity()) ||
-            !std::isfinite(projectile.displacement()))
-          fail("the projectile's velocity or displacement is not a number");
-
-        const bool snapshot_due = schedule.snapshot_due();
-        if (schedule.history_due() || snapshot_due)
-          {
-            HistoryRow row;
-            {
-              TimerOutput::Scope scope(timer, "observables");
-              row = make_row(t, schedule.step(), h, force);
-            }
-            const auto &m = row.model;
-            check_finite(row);
-            if (std::abs(row.energy_error) > p.time.energy_error_limit)
-              {
-                std::ostringstream s;
-                s << "the energy balance error " << 100. * row.energy_error
-                  << " % exceeds Time/Energy error limit = "
-                  << 100. * p.time.energy_error_limit
-                  << " % (time step too large or contact penalty too stiff?)";
-                fail(s.str());
-              }
-            add_history_row(row);
-            result.max_energy_error =
-              std::max(result.max_energy_error, std::abs(row.energy_error));
-            // The first fibre break: a failed cell or truss, or the first
-            // cell whose progressive fibre damage has started. Erosion is
-            // not failure.
-            if (result.first_failure_time < 0. &&
-                (m.n_failed > 0 || m.n_damaged > 0))
-              result.first_failure_time = t;
-            if (result.first_erosion_time < 0. && m.n_eroded > 0)
-              result.first_erosion_time = t;
-            result.n_eroded = m.n_eroded;
-            schedule.history_written();
-
-            if (snapshot_due)
-              {
-                TimerOutput::Scope scope(timer, "output");
-                write_snapshot(t);
-                schedule.snapshot_written();
-              }
-            if (result.cut_through_time < 0. && m.cut_through)
-              result.cut_through_time = t;
-            if (p.time.stop_at_cut_through && result.cut_through_time >= 0. &&
-                t >= result.cut_through_time + p.time.time_after_cut_through -
-                       eps_t)
-              {
-                stop_reason = "the yarn is cut through";
-                break;
-              }
-            if (!projectile.prescribed() && projectile.impact_speed() <= 0.)
-              {
-                stop_reason = "the projectile stopped";
-                break;
-              }
-
-            // Checkpoints: at their interval, and when a signal asks the
-            // run to stop. The signal may reach the ranks at different
-            // steps: they agree here, at the same row.
-            Checkpoint::internal::inject_signal();
-            int due[2] = {Checkpoint::signal_received(),
-                          is_root && p.output.checkpoint_wall_interval > 0. &&
-                            wall_timer.wall_time() - last_checkpoint >=
-                              p.output.checkpoint_wall_interval};
-            MPI_Allreduce(MPI_IN_PLACE, due, 2, MPI_INT, MPI_MAX, communicator);
-            if (due[0] != 0 || due[1] != 0 ||
-                (p.output.checkpoint_interval > 0. &&
-                 t >= next_checkpoint - eps_t))
-              write_checkpoint(false);
-            if (due[0] != 0)
-              stop_on(due[0]);
-          }
-        // A signal between rows: agreed within a few steps, however long
-        // the history interval (the run's state is saved as it is).
-        if (const int signal = signal_poll.poll(); signal != 0)
-          {
-            write_checkpoint(false);
-            stop_on(signal);
-          }
-
-        if (verbose && is_root &&
-            wall_timer.wall_time() - last_progress > p.output.progress_interval)
-          {
-            last_progress = wall_timer.wall_time();
-            const double eta =
-              last_progress * (p.time.end_time - t) / (t - t_start);
-            out << "[" << name << "] t = " << std::fixed << std::setprecision(3)
-                << t * 1e6 << " us, step " << schedule.step() << ", dt "
-                << std::defaultfloat << std::setprecision(4) << h * 1e9
-                << std::fixed << " ns, v = " << std::setprecision(3)
-                << projectile.impact_speed() << " m/s, ETA "
-                << std::setprecision(1) << eta << " s" << std::defaultfloat
-                << std::endl;
-          }
+        std::ostringstream s;
+        s << "Time/Maximum number of steps = " << max_steps
+          << " reached (the stable time step fell to " << h << " s)";
+        fail(loop, s.str());
       }
+    if (!std::isfinite(loop.force))
+      fail(loop, "the contact force is not a number");
+    if (!std::isfinite(projectile.velocity()) ||
+        !std::isfinite(projectile.displacement()))
+      fail(loop, "the projectile's velocity or displacement is not a number");
+    return h;
+  }
 
-    if (checkpoints.keep_final_state && !finished)
-      write_checkpoint(true);
 
+  HistoryRow
+  ImpactSimulation::Implementation::check_row(Loop &loop,
+                                              TimerOutput &timer,
+                                              const double h)
+  {
+    HistoryRow row;
+    {
+      TimerOutput::Scope scope(timer, "observables");
+      row = make_row(loop.schedule.time(), loop.schedule.step(), h, loop.force);
+    }
+    check_finite(loop, row);
+    const double limit = parameters.time.energy_error_limit;
+    if (std::abs(row.energy_error) > limit)
+      {
+        std::ostringstream s;
+        s << "the energy balance error " << 100. * row.energy_error
+          << " % exceeds Time/Energy error limit = " << 100. * limit
+          << " % (time step too large or contact penalty too stiff?)";
+        fail(loop, s.str());
+      }
+    return row;
+  }
+
+
+  bool
+  ImpactSimulation::Implementation::post_process(Loop &loop,
+                                                 TimerOutput &timer,
+                                                 const HistoryRow &row,
+                                                 const bool snapshot_due)
+  {
+    const auto &time  = parameters.time;
+    const double t    = loop.schedule.time();
+    const auto &m     = row.model;
+    RunResult &result = loop.result;
+    add_history_row(row);
+    result.max_energy_error =
+      std::max(result.max_energy_error, std::abs(row.energy_error));
+    // The first fibre break: a failed cell or truss, or the first cell whose
+    // progressive fibre damage has started. Erosion is not failure.
+    if (result.first_failure_time < 0. && (m.n_failed > 0 || m.n_damaged > 0))
+      result.first_failure_time = t;
+    if (result.first_erosion_time < 0. && m.n_eroded > 0)
+      result.first_erosion_time = t;
+    result.n_eroded = m.n_eroded;
+    loop.schedule.history_written();
+
+    if (snapshot_due)
+      {
+        TimerOutput::Scope scope(timer, "output");
+        write_snapshot(t);
+        loop.schedule.snapshot_written();
+      }
+    if (result.cut_through_time < 0. && m.cut_through)
+      result.cut_through_time = t;
+    if (time.stop_at_cut_through && result.cut_through_time >= 0. &&
+        t >= result.cut_through_time + time.time_after_cut_through -
+               loop.schedule.epsilon())
+      {
+        loop.stop_reason = "the yarn is cut through";
+        return true;
+      }
+    if (!projectile.prescribed() && projectile.impact_speed() <= 0.)
+      {
+        loop.stop_reason = "the projectile stopped";
+        return true;
+      }
+    return false;
+  }
+
+
+  void
+  ImpactSimulation::Implementation::maybe_checkpoint(Loop &loop,
+                                                     TimerOutput &timer)
+  {
+    const auto &output = parameters.output;
+    // The signal may reach the ranks at different steps: they agree here,
+    // at the same row.
+    Checkpoint::internal::inject_signal();
+    int due[2] = {Checkpoint::signal_received(),
+                  is_root && output.checkpoint_wall_interval > 0. &&
+                    loop.wall_timer.wall_time() - loop.last_checkpoint >=
+                      output.checkpoint_wall_interval};
+    MPI_Allreduce(MPI_IN_PLACE, due, 2, MPI_INT, MPI_MAX, communicator);
+    if (due[0] != 0 || due[1] != 0 ||
+        (output.checkpoint_interval > 0. &&
+         loop.schedule.time() >= next_checkpoint - loop.schedule.epsilon()))
+      write_checkpoint(loop, timer, false);
+    if (due[0] != 0)
+      stop_on(loop, due[0]);
+  }
+
+
+  void
+  ImpactSimulation::Implementation::checkpoint_on_signal(
+    Loop &loop,
+    TimerOutput &timer,
+    Checkpoint::SignalPoll &signal_poll)
+  {
+    // Agreed within a few steps, however long the history interval (the
+    // run's state is saved as it is).
+    if (const int signal = signal_poll.poll(); signal != 0)
+      {
+        write_checkpoint(loop, timer, false);
+        stop_on(loop, signal);
+      }
+  }
+
+
+  void
+  ImpactSimulation::Implementation::report_progress(Loop &loop, const double h)
+  {
+    const auto &p = parameters;
+    if (p.output.verbosity != Parameters::Verbosity::normal || !is_root ||
+        !(loop.wall_timer.wall_time() - loop.last_progress >
+          p.output.progress_interval))
+      return;
+    const double t     = loop.schedule.time();
+    loop.last_progress = loop.wall_timer.wall_time();
+    const double eta =
+      loop.last_progress * (p.time.end_time - t) / (t - loop.t_start);
+    out << "[" << model->name() << "] t = " << std::fixed
+        << std::setprecision(3) << t * 1e6 << " us, step "
+        << loop.schedule.step() << ", dt " << std::defaultfloat
+        << std::setprecision(4) << h * 1e9 << std::fixed
+        << " ns, v = " << std::setprecision(3) << projectile.impact_speed()
+        << " m/s, ETA " << std::setprecision(1) << eta << " s"
+        << std::defaultfloat << std::endl;
+  }
+
+
+  RunResult
+  ImpactSimulation::Implementation::finish(Loop &loop, TimerOutput &timer)
+  {
+    if (checkpoints.keep_final_state && !loop.finished)
+      write_checkpoint(loop, timer, true);
+    RunResult &result     = loop.result;
     result.model_remarks  = model->remarks();
-    result.n_steps        = schedule.step();
-    result.end_time       = schedule.time();
-    result.wall_time      = wall_timer.wall_time();
+    result.n_steps        = loop.schedule.step();
+    result.end_time       = loop.schedule.time();
+    result.wall_time      = loop.wall_timer.wall_time();
     result.final_velocity = projectile.impact_speed();
-
-    if (!testing)
-      out << "[" << name << "] stopped: " << stop_reason << '\n';
+    if (parameters.output.verbosity != Parameters::Verbosity::test)
+      out << "[" << model->name() << "] stopped: " << loop.stop_reason << '\n';
     return result;
+  }
+
+
+  void
+  ImpactSimulation::Implementation::write_checkpoint(Loop &loop,
+                                                     TimerOutput &timer,
+                                                     const bool completed)
+  {
+    TimerOutput::Scope scope(timer, "checkpoint");
+    const double t = loop.schedule.time();
+    if (parameters.output.checkpoint_interval > 0.)
+      advance_past(next_checkpoint,
+                   parameters.output.checkpoint_interval,
+                   t,
+                   loop.schedule.epsilon());
+    checkpoint_info      = Checkpoint::write(parameters.output.directory,
+                                        model->name(),
+                                        communicator,
+                                        checkpoint_info,
+                                        t,
+                                        loop.schedule.step(),
+                                        completed,
+                                        checkpoint_state(loop.schedule,
+                                                         loop.force,
+                                                         loop.result,
+                                                         loop.stop_reason));
+    loop.last_checkpoint = loop.wall_timer.wall_time();
+  }
+
+
+  void
+  ImpactSimulation::Implementation::stop_on(const Loop &loop,
+                                            const int signal) const
+  {
+    std::ostringstream s;
+    s << "the " << model->name() << " run was stopped by "
+      << (signal == SIGINT ? "SIGINT" : "SIGTERM")
+      << " at t = " << loop.schedule.time() * 1e6 << " us (step "
+      << loop.schedule.step() << "); its state is saved in "
+      << Checkpoint::info_file(parameters.output.directory, model->name());
+    throw Interrupted(s.str());
+  }
+
+
+  void
+  ImpactSimulation::Implementation::fail(const Loop &loop,
+                                         const std::string &cause) const
+  {
+    std::ostringstream s;
+    s << "numerical failure in the " << model->name() << " model at step "
+      << loop.schedule.step() << ", t = " << loop.schedule.time() * 1e6
+      << " us: " << cause
+      << ". The last good snapshot and the history up to it are kept in "
+      << parameters.output.directory << ".";
+    throw RunError(s.str());
+  }
+
+
+  void
+  ImpactSimulation::Implementation::check_finite(const Loop &loop,
+                                                 const HistoryRow &row) const
+  {
+    // Every energy of a row finite before it is written, or the run stops.
+    const auto &m = row.model;
+    if (!std::isfinite(m.kinetic_energy) || !std::isfinite(m.elastic_energy) ||
+        !std::isfinite(m.contact_energy) || !std::isfinite(m.dissipated_energy))
+      fail(loop, "an energy is not a number (an inverted cell or a blow-up)");
+    if (!std::isfinite(row.projectile_kinetic_energy) ||
+        !std::isfinite(row.external_work) || !std::isfinite(row.energy_error))
+      fail(loop,
+           "the projectile's kinetic energy, its work or the energy balance "
+           "error is not a finite number (Projectile/Mass or "
+           "Projectile/Impact velocity too large?)");
   }
 
 

@@ -49,9 +49,113 @@ namespace YarnImpact
     RunResult
     run();
 
-    /** The run, timed by @p timer. */
+    /** The run, timed by @p timer: set-up, start, then each step as the
+     * list of its named parts (ASPECT's Simulator::run), and the end. */
     RunResult
     run_timed(TimerOutput &timer);
+
+    /** What the time loop carries from one step to the next. */
+    struct Loop
+    {
+      Loop(const Parameters::Time &time, const Parameters::Output &output)
+        : schedule(time, output)
+      {}
+
+      /** Wall-clock time since the run began (progress lines, wall-clock
+       * checkpoints, RunResult::wall_time). */
+      Timer wall_timer;
+      /** The clock: time, step, time step and what is due. */
+      Schedule schedule;
+      /** The model's axial properties, once set up. */
+      AxialProperties axial;
+      /** What the run returns, filled as it goes. */
+      RunResult result;
+      /** Why the loop ended (the run's last line). */
+      std::string stop_reason = "end time reached";
+      /** Contact force on the projectile after the last step [N]. */
+      double force = 0.;
+      /** Simulated time at which this run (or restart) began [s]. */
+      double t_start = 0.;
+      /** Wall-clock times of the last progress line and checkpoint [s]. */
+      double last_progress = 0., last_checkpoint = 0.;
+      /** A restart of a run that had already finished: no step left. */
+      bool finished = false;
+    };
+
+    // The named parts of run_timed(), in their order.
+
+    /** Set up the model and the projectile, verify a restart's checkpoint
+     * (returned: this rank's saved state), open the history, take the
+     * first stable step and report the set-up. */
+    std::string
+    set_up(Loop &loop, TimerOutput &timer);
+
+    /** Start the run: from the checkpoint @p saved_state, or at t = 0 with
+     * the first forces, history row and snapshot. */
+    void
+    start(Loop &loop, TimerOutput &timer, std::string saved_state);
+
+    /** Start a step: the stable time step, when it is due. */
+    void
+    start_step(Loop &loop, TimerOutput &timer);
+
+    /** Advance the model and the projectile by one step and check that
+     * they stay finite; returns the step taken [s]. */
+    double
+    advance_step(Loop &loop, TimerOutput &timer);
+
+    /** The history row at the step @p h [s] just taken, checked (finite
+     * energies, energy balance within Time/Energy error limit). */
+    HistoryRow
+    check_row(Loop &loop, TimerOutput &timer, const double h);
+
+    /** Post-process a row: the history, the run's records, a due snapshot
+     * (@p snapshot_due); returns whether a stop rule ends the run. */
+    bool
+    post_process(Loop &loop,
+                 TimerOutput &timer,
+                 const HistoryRow &row,
+                 const bool snapshot_due);
+
+    /** At a history row: the checkpoint when its interval, its wall-clock
+     * interval or a signal (agreed by all ranks) asks for one; a signal
+     * then stops the run (Interrupted). */
+    void
+    maybe_checkpoint(Loop &loop, TimerOutput &timer);
+
+    /** Between rows: a signal agreed through @p signal_poll saves the state
+     * and stops the run (Interrupted). */
+    void
+    checkpoint_on_signal(Loop &loop,
+                         TimerOutput &timer,
+                         Checkpoint::SignalPoll &signal_poll);
+
+    /** The progress line, every Output/Progress interval (normal
+     * verbosity, rank 0); @p h the last step [s]. */
+    void
+    report_progress(Loop &loop, const double h);
+
+    /** End the run: the final state's checkpoint if asked for, the
+     * result. */
+    RunResult
+    finish(Loop &loop, TimerOutput &timer);
+
+    /** Write a checkpoint of the loop's state now; @p completed: the run
+     * has finished. */
+    void
+    write_checkpoint(Loop &loop, TimerOutput &timer, const bool completed);
+
+    /** Stop the run after a signal (Interrupted), its state saved. */
+    [[noreturn]] void
+    stop_on(const Loop &loop, const int signal) const;
+
+    /** Stop the run on a numerical failure (RunError) naming @p cause. */
+    [[noreturn]] void
+    fail(const Loop &loop, const std::string &cause) const;
+
+    /** fail() unless every energy of @p row is finite. */
+    void
+    check_finite(const Loop &loop, const HistoryRow &row) const;
 
     HistoryRow
     make_row(const double time,

@@ -5,7 +5,6 @@
 
 #include <yarn_impact/app/application.h>
 #include <yarn_impact/core/impact_simulation.h>
-#include <yarn_impact/fe/fe_model.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -40,9 +39,7 @@ main(int argc, char **argv)
       std::filesystem::create_directories(p.shared.output.directory);
       std::ostringstream sink;
       ImpactSimulation simulation(p.shared,
-                                  FE::create_model(p.shared,
-                                                   p.fe,
-                                                   MPI_COMM_WORLD),
+                                  create_model("fe", p, MPI_COMM_WORLD),
                                   MPI_COMM_WORLD,
                                   sink);
       simulation.run();

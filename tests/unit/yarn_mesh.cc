@@ -5,7 +5,6 @@
 
 #include <yarn_impact/app/application.h>
 #include <yarn_impact/core/projectile.h>
-#include <yarn_impact/fe/fe_model.h>
 #include <yarn_impact/fe/yarn_mesh.h>
 
 #include <deal.II/base/mpi.h>
@@ -68,7 +67,7 @@ main(int argc, char **argv)
         prm.parse_input_from_string(input.str());
         AllParameters p;
         p.parse_parameters(prm);
-        auto model = FE::create_model(p.shared, p.fe, MPI_COMM_WORLD);
+        auto model = create_model("fe", p, MPI_COMM_WORLD);
         Projectile projectile(p.shared.projectile, a_y);
         std::ostringstream sink;
         model->setup(projectile, sink);

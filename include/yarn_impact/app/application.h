@@ -3,13 +3,14 @@
 
 #include <yarn_impact/analysis/parameters.h>
 #include <yarn_impact/app/model_factory.h>
+#include <yarn_impact/core/model_registry.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/coupling/hybrid_model.h>
-#include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/dem/elementary/elementary_test.h>
-#include <yarn_impact/fe/parameters.h>
+#include <yarn_impact/dem/parameters.h>
 
 #include <iosfwd>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,15 +24,27 @@ namespace YarnImpact
   /** Every parameter of a run: the shared ones and those of each model. */
   struct AllParameters
   {
-    /** Model(s) to run (entry `Model`). */
-    ModelType model = ModelType::fe;
+    /** Model(s) to run (entry `Model`): a registered model or `both`. */
+    std::string model = "fe";
     Parameters::Shared shared;
     /** Wave fronts and verification (analysis/). */
     Analysis::Parameters analysis;
-    FE::Parameters fe;
+    /** Every registered model with its parameters, by name
+     * (ModelRegistry); each parses its own, whichever model runs, so that
+     * a bad entry is refused whatever `Model` says. */
+    std::map<std::string, std::shared_ptr<ModelPlugin>> models;
+    /** The DEM's parameters and the elementary test's: an elementary test
+     * (`Model = dem`, `Elementary test/Loading` not none) drives a periodic
+     * segment, not an impact model, so it is run by the application. */
     DEM::Parameters dem;
-    Coupling::HybridParameters hybrid;
     DEM::ElementaryTestParameters elementary;
+
+    /** The models a run drives, in order (model_names()). */
+    std::vector<std::string>
+    run_models() const
+    {
+      return model_names(model);
+    }
 
     /** Declare every entry. */
     static void

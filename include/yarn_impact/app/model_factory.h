@@ -7,6 +7,8 @@
 
 #include <iosfwd>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -17,30 +19,27 @@ namespace YarnImpact
 {
   struct AllParameters;
 
-  /** Which model(s) a run drives (the top-level entry `Model`). */
-  enum class ModelType
-  {
-    fe,     ///< the mesoscopic finite-element yarn
-    dem,    ///< the microscopic discrete-element fibres
-    both,   ///< both on the same problem, then compared
-    hybrid, ///< the DEM where the yarn breaks, the FE elsewhere, coupled
-  };
-
-  /** Declare the entry `Model` (top level). */
+  /** Declare the entry `Model` (top level): a registered model's name
+   * (ModelRegistry), or `both`, the FE and the DEM on the same problem,
+   * then compared. */
   void
   declare_model_type(dealii::ParameterHandler &prm);
 
   /** The value of the entry `Model`. */
-  ModelType
+  std::string
   parse_model_type(dealii::ParameterHandler &prm);
 
+  /** The registered models that a run of `Model = ` @p model drives, in
+   * order: @p model itself, or for `both` the FE, then the DEM. */
+  std::vector<std::string>
+  model_names(const std::string &model);
+
   /**
-   * The impact model of kind @p type (fe or dem) with the parameters
-   * @p parameters, on @p communicator, not set up yet: the one place that
-   * knows every model.
+   * The registered impact model @p name with its parameters in
+   * @p parameters, on @p communicator, not set up yet.
    */
   std::unique_ptr<ImpactModel>
-  create_model(const ModelType type,
+  create_model(const std::string &name,
                const AllParameters &parameters,
                const MPI_Comm communicator);
 
