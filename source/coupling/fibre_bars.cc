@@ -82,8 +82,8 @@ namespace YarnImpact
       // The owned FE nodes of the layers, by (layer, vertex).
       const std::vector<Point<2>> &vertices = section.get_vertices();
       n_vertices                            = vertices.size();
-      const double size_tol =
-        1e-6 * std::min(yarn.thickness_semi_axis, yarn.width_semi_axis);
+      const double semi_axis =
+        std::min(yarn.thickness_semi_axis, yarn.width_semi_axis);
       const FE::CouplingView fe = FE::coupling_view(fe_model);
       std::vector<double> found(n_layers * n_vertices, 0.);
       owned_nodes.clear();
@@ -96,15 +96,11 @@ namespace YarnImpact
                         std::abs(t - layer) < 1e-6,
                       ExcMessage("Hybrid: an FE node is not on one of the "
                                  "fibre bars' layers"));
-          const Point<2> p((*fe.reference_coordinate)[node[1]],
-                           (*fe.reference_coordinate)[node[2]]);
-          unsigned int v = 0;
-          for (unsigned int k = 1; k < n_vertices; ++k)
-            if (p.distance(vertices[k]) < p.distance(vertices[v]))
-              v = k;
-          AssertThrow(p.distance(vertices[v]) < size_tol,
-                      ExcMessage("Hybrid: an FE node is not a vertex of the "
-                                 "section"));
+          const unsigned int v =
+            section_vertex(section,
+                           Point<2>((*fe.reference_coordinate)[node[1]],
+                                    (*fe.reference_coordinate)[node[2]]),
+                           semi_axis);
           const unsigned int c = layer * n_vertices + v;
           owned_nodes.push_back({c, node});
           found[c] = 1.;

@@ -32,8 +32,8 @@ namespace YarnImpact
       const unsigned int n_layers           = layout.overlap_cells + 1;
       const unsigned int n_coupled          = n_layers * n_vertices;
       const double h                        = layout.cell_length;
-      const double size_tol =
-        1e-6 * std::min(yarn.thickness_semi_axis, yarn.width_semi_axis);
+      const double semi_axis =
+        std::min(yarn.thickness_semi_axis, yarn.width_semi_axis);
 
       // The owned FE nodes of the overlap's layers, by (layer, vertex).
       const FE::CouplingView fe = FE::coupling_view(fe_model);
@@ -45,15 +45,11 @@ namespace YarnImpact
           if (j < -1e-6 || j > layout.overlap_cells + 1e-6)
             continue;
           const unsigned int layer = std::lround(j);
-          const Point<2> p((*fe.reference_coordinate)[node[1]],
-                           (*fe.reference_coordinate)[node[2]]);
-          unsigned int v = 0;
-          for (unsigned int k = 1; k < n_vertices; ++k)
-            if (p.distance(vertices[k]) < p.distance(vertices[v]))
-              v = k;
-          AssertThrow(p.distance(vertices[v]) < size_tol,
-                      ExcMessage("Hybrid: an FE node of the overlap is not "
-                                 "a vertex of the section"));
+          const unsigned int v =
+            section_vertex(section,
+                           Point<2>((*fe.reference_coordinate)[node[1]],
+                                    (*fe.reference_coordinate)[node[2]]),
+                           semi_axis);
           const unsigned int c = layer * n_vertices + v;
           owned_nodes.push_back({c, node});
           node_mass[c] = fe.mass[node[0]];

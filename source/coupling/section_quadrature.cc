@@ -19,6 +19,7 @@
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
 namespace YarnImpact
@@ -27,6 +28,23 @@ namespace YarnImpact
   {
     using namespace dealii;
     using YarnImpact::Parameters::require;
+
+
+    unsigned int
+    section_vertex(const Triangulation<2> &section,
+                   const Point<2> &p,
+                   const double semi_axis)
+    {
+      const std::vector<Point<2>> &vertices = section.get_vertices();
+      unsigned int v                        = 0;
+      for (unsigned int k = 1; k < vertices.size(); ++k)
+        if (p.distance(vertices[k]) < p.distance(vertices[v]))
+          v = k;
+      if (!(p.distance(vertices[v]) < 1e-6 * semi_axis))
+        throw std::logic_error("Hybrid: an FE node of a part is not a "
+                               "vertex of the section it was extruded from");
+      return v;
+    }
 
 
     void

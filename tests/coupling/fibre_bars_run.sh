@@ -27,7 +27,7 @@ fail() {
   echo "FAILED $*"
   failures=$((failures + 1))
 }
-. "$src/tests/coupling/same_history.sh"
+. "$src/tests/coupling/run_checks.sh"
 
 bars_prm() {
   cat "$src/prm/hybrid/km2_120ms_hybrid.prm"
@@ -39,46 +39,16 @@ bars_prm() {
   printf '  set Window end = 1.8e-6\n  set Energy tolerance = 5e-4\n  set Tolerance = 0.02\nend\n'
 }
 
-for n in 1 2; do
-  bars_prm "ranks$n" > "ranks$n.prm"
-  mpirun -np "$n" "$exe" "ranks$n.prm" > "ranks$n.stdout" 2>&1
-  rc=$?
-  if [ $rc -ne 0 ]; then
-    fail "$n rank(s): exit $rc (3 = a verification check failed)"
-    tail -25 "ranks$n.stdout"
-    continue
-  fi
-  if [ "$n" -gt 1 ] && ! same_history ranks1/history_hybrid.csv "ranks$n/history_hybrid.csv"; then
-    fail "$n ranks: history_hybrid.csv differs from 1 rank's"
-  fi
-done
+same_on_ranks bars_prm 1 2
 grep -E "longitudinal speed|energy error" ranks1/summary.txt
 
-bars_prm stopped > stopped.prm
-YARN_IMPACT_SIGNAL_AT_ROW=9 "$exe" stopped.prm > stopped.stdout 2> stopped.stderr
-rc=$?
-[ $rc -eq 6 ] || fail "signal: expected exit 6, got $rc: $(head -c 300 stopped.stderr)"
-"$exe" --restart stopped.prm > restarted.stdout 2> restarted.stderr
-rc=$?
-[ $rc -eq 0 ] || fail "restart: exit $rc: $(head -c 300 restarted.stderr)"
-cmp -s ranks1/history_hybrid.csv stopped/history_hybrid.csv ||
-  fail "restart: history_hybrid.csv differs from the uninterrupted run's"
+restart_same bars_prm 9 ranks1/history_hybrid.csv
 
-refuse() {
-  local name=$1 pattern=$2
-  shift 2
-  { bars_prm bad; printf '%b' "$*"; } > bad.prm
-  "$exe" --check bad.prm > bad.stdout 2> bad.stderr
-  rc=$?
-  if [ $rc -ne 1 ] || [ "$(wc -l < bad.stderr)" -ne 1 ] || ! grep -q "$pattern" bad.stderr; then
-    fail "$name: expected exit 1 and one line naming $pattern, got $rc: $(head -c 300 bad.stderr)"
-  fi
-}
-refuse "fibre bars with a DEM part at the clamp" "Hybrid/Clamp DEM length" \
+refuse bars_prm "fibre bars with a DEM part at the clamp" "Hybrid/Clamp DEM length" \
   'subsection Hybrid\n  set Clamp DEM length = 2e-3\nend\n'
-refuse "fibre bars with the linear law" "FE/Constitutive law" \
+refuse bars_prm "fibre bars with the linear law" "FE/Constitutive law" \
   'subsection FE\n  set Constitutive law = Linear transversely isotropic\nend\n'
-refuse "an unknown far field" "Far field" \
+refuse bars_prm "an unknown far field" "Far field" \
   'subsection Hybrid\n  set Far field = springs\nend\n'
 
 if [ $failures -ne 0 ]; then

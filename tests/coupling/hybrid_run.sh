@@ -39,33 +39,13 @@ hybrid_prm() {
   printf '  set Energy tolerance = 5e-4\n  set Tolerance = 0.04\nend\n'
 }
 
-. "$src/tests/coupling/same_history.sh"
+. "$src/tests/coupling/run_checks.sh"
 
-for n in 1 2 3; do
-  hybrid_prm "ranks$n" > "ranks$n.prm"
-  mpirun -np "$n" "$exe" "ranks$n.prm" > "ranks$n.stdout" 2>&1
-  rc=$?
-  if [ $rc -ne 0 ]; then
-    fail "$n rank(s): exit $rc (3 = a verification check failed)"
-    tail -25 "ranks$n.stdout"
-    continue
-  fi
-  if [ "$n" -gt 1 ] && ! same_history ranks1/history_hybrid.csv "ranks$n/history_hybrid.csv"; then
-    fail "$n ranks: history_hybrid.csv differs from 1 rank's"
-  fi
-done
+same_on_ranks hybrid_prm 1 2 3
 grep -E "mean deceleration|energy error" ranks1/summary.txt
 
 # Stopped at row 15, continued.
-hybrid_prm stopped > stopped.prm
-YARN_IMPACT_SIGNAL_AT_ROW=15 "$exe" stopped.prm > stopped.stdout 2> stopped.stderr
-rc=$?
-[ $rc -eq 6 ] || fail "signal: expected exit 6, got $rc: $(head -c 300 stopped.stderr)"
-"$exe" --restart stopped.prm > restarted.stdout 2> restarted.stderr
-rc=$?
-[ $rc -eq 0 ] || fail "restart: exit $rc: $(head -c 300 restarted.stderr)"
-cmp -s ranks1/history_hybrid.csv stopped/history_hybrid.csv ||
-  fail "restart: history_hybrid.csv differs from the uninterrupted run's"
+restart_same hybrid_prm 15 ranks1/history_hybrid.csv
 
 # With a DEM part at the clamp (Hybrid/Clamp DEM length), 2.4 us: the bar
 # wave reflects in it from 1.66 us on. Energy balance at most 0.05 %; the
@@ -99,42 +79,25 @@ print(f"clamp part: largest velocity difference {worst:.3e} m/s")
 sys.exit(0 if len(b) > 20 and worst <= 1e-4 else 1)
 END
     fail "clamp part: the projectile's velocity differs from the run without it before any wave came back"
-  clamp_prm clamp_stopped > clamp_stopped.prm
-  YARN_IMPACT_SIGNAL_AT_ROW=12 "$exe" clamp_stopped.prm > clamp_stopped.stdout 2> clamp_stopped.stderr
-  rc=$?
-  [ $rc -eq 6 ] || fail "clamp part, signal: expected exit 6, got $rc"
-  "$exe" --restart clamp_stopped.prm > clamp_restarted.stdout 2> clamp_restarted.stderr
-  rc=$?
-  [ $rc -eq 0 ] || fail "clamp part, restart: exit $rc: $(head -c 300 clamp_restarted.stderr)"
-  cmp -s clamp/history_hybrid.csv clamp_stopped/history_hybrid.csv ||
-    fail "clamp part, restart: history_hybrid.csv differs from the uninterrupted run's"
+  restart_same clamp_prm 12 clamp/history_hybrid.csv
 fi
 
 # Bad set-ups: one line naming the parameter, exit 1.
-refuse() {
-  local name=$1 pattern=$2
-  shift 2
-  { cat "$src/prm/hybrid/km2_120ms_hybrid.prm"; printf '%b' "$*"; } > bad.prm
-  "$exe" --check bad.prm > bad.stdout 2> bad.stderr
-  rc=$?
-  if [ $rc -ne 1 ] || [ "$(wc -l < bad.stderr)" -ne 1 ] || ! grep -q "$pattern" bad.stderr; then
-    fail "$name: expected exit 1 and one line naming $pattern, got $rc: $(head -c 300 bad.stderr)"
-  fi
-}
-refuse "contact zone in the overlap" "Hybrid/DEM half-length" \
+plain_prm() { cat "$src/prm/hybrid/km2_120ms_hybrid.prm"; }
+refuse plain_prm "contact zone in the overlap" "Hybrid/DEM half-length" \
   'subsection Hybrid\n  set DEM half-length = 1.5e-3\nend\n'
-refuse "no FE cell before the clamp" "Hybrid/DEM half-length" \
+refuse plain_prm "no FE cell before the clamp" "Hybrid/DEM half-length" \
   'subsection Hybrid\n  set DEM half-length = 12.7e-3\nend\n'
-refuse "overlap as wide as the DEM part" "Hybrid/Overlap width" \
+refuse plain_prm "overlap as wide as the DEM part" "Hybrid/Overlap width" \
   'subsection Hybrid\n  set Overlap width = 7e-3\nend\n'
-refuse "negative overlap" "Hybrid/Overlap width" \
+refuse plain_prm "negative overlap" "Hybrid/Overlap width" \
   'subsection Hybrid\n  set Overlap width = -1e-3\nend\n'
-refuse "quarter symmetry" "Symmetry" 'set Symmetry = quarter\n'
-refuse "clamp part no longer than the overlap" "Hybrid/Clamp DEM length" \
+refuse plain_prm "quarter symmetry" "Symmetry" 'set Symmetry = quarter\n'
+refuse plain_prm "clamp part no longer than the overlap" "Hybrid/Clamp DEM length" \
   'subsection Hybrid\n  set Clamp DEM length = 1e-3\nend\n'
-refuse "clamp part meeting the nose's overlap" "Hybrid/Clamp DEM length" \
+refuse plain_prm "clamp part meeting the nose's overlap" "Hybrid/Clamp DEM length" \
   'subsection Hybrid\n  set Clamp DEM length = 6.8e-3\nend\n'
-refuse "negative clamp part" "Hybrid/Clamp DEM length" \
+refuse plain_prm "negative clamp part" "Hybrid/Clamp DEM length" \
   'subsection Hybrid\n  set Clamp DEM length = -2e-3\nend\n'
 
 if [ $failures -ne 0 ]; then

@@ -67,6 +67,17 @@ namespace YarnImpact
                       std::array<double, 4> &values);
 
     /**
+     * The vertex of @p section at the point (y, z) = @p p [m] of an FE
+     * node of a part extruded from it; throws naming the cause if no
+     * vertex lies within 1e-6 of the section's smaller semi-axis
+     * @p semi_axis [m].
+     */
+    unsigned int
+    section_vertex(const dealii::Triangulation<2, 2> &section,
+                   const dealii::Point<2, double> &p,
+                   const double semi_axis);
+
+    /**
      * The FE part's section quadrature (doc/hybrid.md section 3.3): in each
      * section cell, the four Gauss weights w'_q that give each of its
      * vertices v the fibres' share of the axial stiffness,

@@ -1,0 +1,75 @@
+# Sourced by the hybrid yarn's run tests (hybrid_run.sh, fibre_bars_run.sh),
+# which define $exe, fail() and a function PRM DIR that writes the case's
+# parameter file with its output in DIR.
+# same_history A B: every column byte for byte but the energy balance's,
+# which the DEM part sums per rank (as Model = dem does): those within
+# 1e-9 of the initial energy.
+same_history() {
+  /usr/bin/python3 - "$1" "$2" << 'END'
+import csv, sys
+a, b = (list(csv.reader(open(p))) for p in sys.argv[1:3])
+if len(a) != len(b) or a[0] != b[0]:
+    sys.exit(1)
+h = a[0]
+energy = [k for k, n in enumerate(h) if "energy" in n or "external work" in n]
+scale = float(a[1][h.index("projectile kinetic energy [mJ]")])
+for x, y in zip(a[1:], b[1:]):
+    for k in range(len(h)):
+        if x[k] == y[k]:
+            continue
+        bound = 1e-9 * (100. if "[%]" in h[k] else scale)
+        if k not in energy or abs(float(x[k]) - float(y[k])) > bound:
+            print(f"t = {x[0]} us, {h[k]}: {x[k]} against {y[k]}")
+            sys.exit(1)
+END
+}
+
+# same_on_ranks PRM N...: run the case of PRM on each number of ranks (in
+# rank folders ranksN); every history the same as on the first.
+same_on_ranks() {
+  local prm=$1 first=""
+  shift
+  for n in "$@"; do
+    "$prm" "ranks$n" > "ranks$n.prm"
+    mpirun -np "$n" "$exe" "ranks$n.prm" > "ranks$n.stdout" 2>&1
+    rc=$?
+    if [ $rc -ne 0 ]; then
+      fail "$n rank(s): exit $rc (3 = a verification check failed)"
+      tail -25 "ranks$n.stdout"
+      continue
+    fi
+    if [ -z "$first" ]; then
+      first=$n
+    elif ! same_history "ranks$first/history_hybrid.csv" "ranks$n/history_hybrid.csv"; then
+      fail "$n ranks: history_hybrid.csv differs from $first rank(s)'"
+    fi
+  done
+}
+
+# restart_same PRM ROW REFERENCE: stopped by SIGTERM at history row ROW and
+# continued with --restart, the history byte for byte that of REFERENCE.
+restart_same() {
+  local prm=$1 row=$2 reference=$3 dir="stopped_$1"
+  "$prm" "$dir" > "$dir.prm"
+  YARN_IMPACT_SIGNAL_AT_ROW=$row "$exe" "$dir.prm" > "$dir.stdout" 2> "$dir.stderr"
+  rc=$?
+  [ $rc -eq 6 ] || fail "$prm, signal: expected exit 6, got $rc: $(head -c 300 "$dir.stderr")"
+  "$exe" --restart "$dir.prm" > "$dir.restarted" 2> "$dir.restarted.stderr"
+  rc=$?
+  [ $rc -eq 0 ] || fail "$prm, restart: exit $rc: $(head -c 300 "$dir.restarted.stderr")"
+  cmp -s "$reference" "$dir/history_hybrid.csv" ||
+    fail "$prm, restart: history_hybrid.csv differs from the uninterrupted run's"
+}
+
+# refuse PRM NAME PATTERN TEXT: PRM's case with TEXT appended refused by
+# --check with exit 1 and one line naming PATTERN.
+refuse() {
+  local prm=$1 name=$2 pattern=$3
+  shift 3
+  { "$prm" bad; printf '%b' "$*"; } > bad.prm
+  "$exe" --check bad.prm > bad.stdout 2> bad.stderr
+  rc=$?
+  if [ $rc -ne 1 ] || [ "$(wc -l < bad.stderr)" -ne 1 ] || ! grep -q "$pattern" bad.stderr; then
+    fail "$name: expected exit 1 and one line naming $pattern, got $rc: $(head -c 300 bad.stderr)"
+  fi
+}
