@@ -80,36 +80,15 @@ namespace YarnImpact
         }
 
       // The owned FE nodes of the layers, by (layer, vertex).
-      const std::vector<Point<2>> &vertices = section.get_vertices();
-      n_vertices                            = vertices.size();
-      const double semi_axis =
-        std::min(yarn.thickness_semi_axis, yarn.width_semi_axis);
-      const FE::CouplingView fe = FE::coupling_view(fe_model);
-      std::vector<double> found(n_layers * n_vertices, 0.);
-      owned_nodes.clear();
-      for (const auto &node : *fe.nodes)
-        {
-          const double t = ((*fe.reference_coordinate)[node[0]] - x_begin) /
-                           layout.cell_length;
-          const unsigned int layer = std::lround(t);
-          AssertThrow(t > -1e-6 && layer < n_layers &&
-                        std::abs(t - layer) < 1e-6,
-                      ExcMessage("Hybrid: an FE node is not on one of the "
-                                 "fibre bars' layers"));
-          const unsigned int v =
-            section_vertex(section,
-                           Point<2>((*fe.reference_coordinate)[node[1]],
-                                    (*fe.reference_coordinate)[node[2]]),
-                           semi_axis);
-          const unsigned int c = layer * n_vertices + v;
-          owned_nodes.push_back({c, node});
-          found[c] = 1.;
-        }
-      Utilities::MPI::sum(found, communicator, found);
-      for (const double x : found)
-        AssertThrow(x == 1.,
-                    ExcMessage("Hybrid: a node of the fibre bars' layers is "
-                               "missing from the FE part or owned twice"));
+      n_vertices = section.n_vertices();
+      owned_nodes =
+        layer_nodes(fe_model,
+                    section,
+                    x_begin,
+                    layout.cell_length,
+                    n_layers,
+                    std::min(yarn.thickness_semi_axis, yarn.width_semi_axis),
+                    communicator);
       node_displacement.assign(2 * n_layers * n_vertices, 0.);
       node_axial_force.assign(n_layers * n_vertices, 0.);
       set_up_projection();

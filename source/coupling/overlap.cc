@@ -27,40 +27,26 @@ namespace YarnImpact
                     const YarnImpact::Parameters::Yarn &yarn,
                     const MPI_Comm communicator)
     {
-      const std::vector<Point<2>> &vertices = section.get_vertices();
-      const unsigned int n_vertices         = vertices.size();
-      const unsigned int n_layers           = layout.overlap_cells + 1;
-      const unsigned int n_coupled          = n_layers * n_vertices;
-      const double h                        = layout.cell_length;
+      const unsigned int n_vertices = section.n_vertices();
+      const unsigned int n_layers   = layout.overlap_cells + 1;
+      const unsigned int n_coupled  = n_layers * n_vertices;
+      const double h                = layout.cell_length;
       const double semi_axis =
         std::min(yarn.thickness_semi_axis, yarn.width_semi_axis);
 
       // The owned FE nodes of the overlap's layers, by (layer, vertex).
       const FE::CouplingView fe = FE::coupling_view(fe_model);
-      std::vector<double> node_mass(n_coupled, 0.), found(n_coupled, 0.);
-      for (const auto &node : *fe.nodes)
-        {
-          const double x = (*fe.reference_coordinate)[node[0]];
-          const double j = (x - x_begin) / h;
-          if (j < -1e-6 || j > layout.overlap_cells + 1e-6)
-            continue;
-          const unsigned int layer = std::lround(j);
-          const unsigned int v =
-            section_vertex(section,
-                           Point<2>((*fe.reference_coordinate)[node[1]],
-                                    (*fe.reference_coordinate)[node[2]]),
-                           semi_axis);
-          const unsigned int c = layer * n_vertices + v;
-          owned_nodes.push_back({c, node});
-          node_mass[c] = fe.mass[node[0]];
-          found[c]     = 1.;
-        }
+      owned_nodes               = layer_nodes(fe_model,
+                                section,
+                                x_begin,
+                                h,
+                                n_layers,
+                                semi_axis,
+                                communicator);
+      std::vector<double> node_mass(n_coupled, 0.);
+      for (const auto &[c, node] : owned_nodes)
+        node_mass[c] = fe.mass[node[0]];
       Utilities::MPI::sum(node_mass, communicator, node_mass);
-      Utilities::MPI::sum(found, communicator, found);
-      for (unsigned int c = 0; c < n_coupled; ++c)
-        AssertThrow(found[c] == 1.,
-                    ExcMessage("Hybrid: an overlap node of the FE part is "
-                               "missing or owned twice"));
       constraint = BridgingConstraint(n_coupled);
       for (unsigned int c = 0; c < n_coupled; ++c)
         constraint.set_node_mass(c, node_mass[c]);

@@ -4,8 +4,10 @@
 #include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/coupling/hybrid_parts.h>
 #include <yarn_impact/dem/packing.h>
+#include <yarn_impact/fe/fe_model.h>
 #include <yarn_impact/fe/yarn_mesh.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
@@ -44,6 +46,45 @@ namespace YarnImpact
         throw std::logic_error("Hybrid: an FE node of a part is not a "
                                "vertex of the section it was extruded from");
       return v;
+    }
+
+
+    std::vector<LayerNode>
+    layer_nodes(ImpactModel &fe_model,
+                const Triangulation<2> &section,
+                const double x_begin,
+                const double h,
+                const unsigned int n_layers,
+                const double semi_axis,
+                const MPI_Comm communicator)
+    {
+      const unsigned int n_vertices = section.n_vertices();
+      const FE::CouplingView fe     = FE::coupling_view(fe_model);
+      std::vector<LayerNode> nodes;
+      std::vector<double> found(n_layers * n_vertices, 0.);
+      for (const auto &node : *fe.nodes)
+        {
+          const double t = ((*fe.reference_coordinate)[node[0]] - x_begin) / h;
+          if (t < -1e-6 || t > n_layers - 1 + 1e-6)
+            continue;
+          const unsigned int layer = std::lround(t);
+          if (std::abs(t - layer) > 1e-6)
+            throw std::logic_error("Hybrid: an FE node of a part lies "
+                                   "between its node layers");
+          const unsigned int v =
+            section_vertex(section,
+                           Point<2>((*fe.reference_coordinate)[node[1]],
+                                    (*fe.reference_coordinate)[node[2]]),
+                           semi_axis);
+          nodes.push_back({layer * n_vertices + v, node});
+          found[layer * n_vertices + v] += 1.;
+        }
+      Utilities::MPI::sum(found, communicator, found);
+      for (const double x : found)
+        if (x != 1.)
+          throw std::logic_error("Hybrid: a node of a part's layers is "
+                                 "missing from the FE part or owned twice");
+      return nodes;
     }
 
 

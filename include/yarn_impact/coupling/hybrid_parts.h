@@ -1,13 +1,18 @@
 #ifndef yarn_impact_coupling_hybrid_parts_h
 #define yarn_impact_coupling_hybrid_parts_h
 
+#include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/coupling/hybrid_model.h>
 #include <yarn_impact/dem/parameters.h>
 #include <yarn_impact/fe/parameters.h>
 
+#include <mpi.h>
+
 #include <array>
 #include <functional>
+#include <utility>
+#include <vector>
 
 namespace dealii
 {
@@ -76,6 +81,26 @@ namespace YarnImpact
     section_vertex(const dealii::Triangulation<2, 2> &section,
                    const dealii::Point<2, double> &p,
                    const double semi_axis);
+
+    /** An FE node of a part: (layer n_vertices + section vertex, its local
+     * x, y and z dofs). */
+    using LayerNode = std::pair<unsigned int, std::array<unsigned int, 3>>;
+
+    /**
+     * The owned FE nodes of @p fe_model (extruded from @p section) on the
+     * @p n_layers node layers x_begin + k h [m], by layer and section
+     * vertex; nodes off that range are left out. Throws unless every
+     * (layer, vertex) is owned by exactly one rank (collective).
+     * @p semi_axis: the section's smaller semi-axis [m].
+     */
+    std::vector<LayerNode>
+    layer_nodes(ImpactModel &fe_model,
+                const dealii::Triangulation<2, 2> &section,
+                const double x_begin,
+                const double h,
+                const unsigned int n_layers,
+                const double semi_axis,
+                const MPI_Comm communicator);
 
     /**
      * The FE part's section quadrature (doc/hybrid.md section 3.3): in each
