@@ -12,12 +12,28 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace YarnImpact
 {
   namespace Coupling
   {
     using namespace dealii;
+
+
+    namespace
+    {
+      /** Sum of per-fibre values in fibre order, the same on any number of
+       * ranks. */
+      double
+      sum_in_fibre_order(const std::vector<double> &values)
+      {
+        double sum = 0.;
+        for (const double v : values)
+          sum += v;
+        return sum;
+      }
+    } // namespace
 
 
     void
@@ -28,8 +44,9 @@ namespace YarnImpact
                       const std::vector<double> &fibre_y_,
                       const std::vector<double> &fibre_z_,
                       const bool failure_,
-                      const MPI_Comm communicator)
+                      const MPI_Comm communicator_)
     {
+      communicator   = communicator_;
       fibre_y        = fibre_y_;
       fibre_z        = fibre_z_;
       n_fibres       = fibre_y.size();
@@ -48,6 +65,17 @@ namespace YarnImpact
       cell_weight.assign(layout.fe_cells, 1.);
       for (unsigned int k = 0; k < layout.overlap_cells; ++k)
         cell_weight[k] = 1. - layout.particle_weight(k);
+
+      n_overlap_nodes = layout.overlap_cells * bars_per_cell + 1;
+      // Contiguous fibre ranges, as even as they go.
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(communicator);
+      const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+      rank_fibres.resize(n_ranks + 1);
+      for (unsigned int r = 0; r <= n_ranks; ++r)
+        rank_fibres[r] = (std::size_t(n_fibres) * r) / n_ranks;
+      fibre_begin = rank_fibres[rank];
+      fibre_end   = rank_fibres[rank + 1];
 
       const std::size_t n_all = std::size_t(n_fibres) * n_nodes;
       displacement.assign(n_all, 0.);
@@ -89,13 +117,59 @@ namespace YarnImpact
                     n_layers,
                     std::min(yarn.thickness_semi_axis, yarn.width_semi_axis),
                     communicator);
-      node_displacement.assign(2 * n_layers * n_vertices, 0.);
-      node_axial_force.assign(n_layers * n_vertices, 0.);
+      node_state.assign(3 * n_layers * n_vertices, 0.);
       set_up_projection();
       node_force.assign(2 * n_layers * n_vertices, 0.);
       layer_displacement.assign(2 * n_layers, 0.);
       layer_force.assign(2 * n_layers, 0.);
-      elastic = dissipated = largest = 0.;
+      fibre_record.assign(std::size_t(n_fibres) * record_size(), 0.);
+      layer_axial.assign(std::size_t(n_fibres) * n_layers, 0.);
+      fibre_elastic.assign(n_fibres, 0.);
+      fibre_dissipated.assign(n_fibres, 0.);
+      fibre_largest.assign(n_fibres, 0.);
+
+      // Gershgorin: omega^2 <= 2 sum of the adjacent bars' stiffness over
+      // the node's mass.
+      double rate2 = 0.;
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          {
+            double xi;
+            double k_sum = cell_weight[cell_of(j, xi)];
+            if (j > 0)
+              k_sum += cell_weight[cell_of(j - 1, xi)];
+            rate2 = std::max(rate2, 2. * stiffness * k_sum / mass[index(f, j)]);
+          }
+      stable_step =
+        rate2 > 0. ? 2. / std::sqrt(rate2) : std::numeric_limits<double>::max();
+    }
+
+
+    template <typename T>
+    void
+    FibreBars::gather_fibres(std::vector<T> &values,
+                             const unsigned int per_fibre) const
+    {
+      const unsigned int n_ranks = rank_fibres.size() - 1;
+      if (n_ranks == 1)
+        return;
+      AssertDimension(values.size(), std::size_t(n_fibres) * per_fibre);
+      std::vector<int> counts(n_ranks), offsets(n_ranks);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          counts[r]  = (rank_fibres[r + 1] - rank_fibres[r]) * per_fibre;
+          offsets[r] = rank_fibres[r] * per_fibre;
+        }
+      const int ierr =
+        MPI_Allgatherv(MPI_IN_PLACE,
+                       0,
+                       MPI_DATATYPE_NULL,
+                       values.data(),
+                       counts.data(),
+                       offsets.data(),
+                       std::is_same_v<T, double> ? MPI_DOUBLE : MPI_UINT8_T,
+                       communicator);
+      AssertThrowMPI(ierr);
     }
 
 
@@ -158,8 +232,13 @@ namespace YarnImpact
 
 
     void
-    FibreBars::set_continuum_axial(ImpactModel &fe_model) const
+    FibreBars::set_continuum_axial(ImpactModel &fe_model)
     {
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        for (unsigned int k = 0; k < n_layers; ++k)
+          layer_axial[std::size_t(f) * n_layers + k] =
+            displacement[index(f, k * bars_per_cell)];
+      gather_fibres(layer_axial, n_layers);
       const FE::CouplingView fe = FE::coupling_view(fe_model);
       for (const auto &[c, dofs] : owned_nodes)
         {
@@ -167,7 +246,7 @@ namespace YarnImpact
           const double *p = &projection[std::size_t(v) * n_fibres];
           double u        = 0.;
           for (unsigned int f = 0; f < n_fibres; ++f)
-            u += p[f] * displacement[index(f, k * bars_per_cell)];
+            u += p[f] * layer_axial[std::size_t(f) * n_layers + k];
           fe.displacement[dofs[0]] = u;
           fe.velocity[dofs[0]]     = 0.;
         }
@@ -177,7 +256,7 @@ namespace YarnImpact
     void
     FibreBars::kick(const double dt)
     {
-      for (unsigned int f = 0; f < n_fibres; ++f)
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
         // The last node is held at the clamp.
         for (unsigned int j = 0; j + 1 < n_nodes; ++j)
           {
@@ -190,7 +269,7 @@ namespace YarnImpact
     void
     FibreBars::drift(const double dt)
     {
-      for (std::size_t i = 0; i < displacement.size(); ++i)
+      for (std::size_t i = index(fibre_begin, 0); i < index(fibre_end, 0); ++i)
         displacement[i] += dt * velocity[i];
     }
 
@@ -201,18 +280,24 @@ namespace YarnImpact
     {
       const FE::CouplingView fe = FE::coupling_view(fe_model);
       // Gather: each entry has one owner and the others add zeros, so the
-      // sums are exact and the same on every rank.
-      std::fill(node_displacement.begin(), node_displacement.end(), 0.);
+      // sums are exact and the same on every rank. The FE part's axial
+      // forces go to the fibres (P^T f_x, below).
+      std::fill(node_state.begin(), node_state.end(), 0.);
       for (const auto &[c, dofs] : owned_nodes)
-        for (unsigned int d = 0; d < 2; ++d)
-          node_displacement[2 * c + d] = fe.displacement[dofs[1 + d]];
-      Utilities::MPI::sum(node_displacement, communicator, node_displacement);
+        {
+          for (unsigned int d = 0; d < 2; ++d)
+            node_state[3 * c + d] = fe.displacement[dofs[1 + d]];
+          node_state[3 * c + 2] = fe.force[dofs[0]];
+          fe.force[dofs[0]]     = 0.;
+        }
+      Utilities::MPI::sum(node_state, communicator, node_state);
 
-      std::fill(force.begin(), force.end(), 0.);
-      std::fill(node_force.begin(), node_force.end(), 0.);
-      elastic = 0.;
-      largest = 0.;
-      for (unsigned int f = 0; f < n_fibres; ++f)
+      const unsigned int n_record = record_size();
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        std::fill(force.begin() + index(f, 0),
+                  force.begin() + index(f + 1, 0),
+                  0.);
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
         {
           const auto &vertex = fibre_vertices[f];
           const auto &value  = fibre_values[f];
@@ -222,11 +307,14 @@ namespace YarnImpact
               {
                 double s = 0.;
                 for (unsigned int v = 0; v < 4; ++v)
-                  s += value[v] *
-                       node_displacement[2 * (k * n_vertices + vertex[v]) + d];
+                  s +=
+                    value[v] * node_state[3 * (k * n_vertices + vertex[v]) + d];
                 layer_displacement[2 * k + d] = s;
               }
-          std::fill(layer_force.begin(), layer_force.end(), 0.);
+          double *const record = &fibre_record[std::size_t(f) * n_record];
+          double *const fibre_layer_force = record;
+          std::fill(fibre_layer_force, fibre_layer_force + 2 * n_layers, 0.);
+          double elastic = 0., largest = 0., n_breaking = 0.;
           // Bar node j's transverse displacement, linear between layers.
           auto transverse = [&](const unsigned int j,
                                 const unsigned int d,
@@ -264,7 +352,8 @@ namespace YarnImpact
               if (failure && eps > failure_strain)
                 {
                   broken[i] = 1;
-                  dissipated += 0.5 * k_w * (l - h) * (l - h);
+                  n_breaking += 1.;
+                  fibre_dissipated[f] += 0.5 * k_w * (l - h) * (l - h);
                   continue;
                 }
               strain[i] = eps;
@@ -279,69 +368,111 @@ namespace YarnImpact
               for (unsigned int d = 0; d < 2; ++d)
                 {
                   const double t = s * e[1 + d];
-                  layer_force[2 * ca + d] += (1. - xa) * t;
-                  layer_force[2 * (ca + 1) + d] += xa * t;
-                  layer_force[2 * c1 + d] -= (1. - xi1) * t;
-                  layer_force[2 * (c1 + 1) + d] -= xi1 * t;
+                  fibre_layer_force[2 * ca + d] += (1. - xa) * t;
+                  fibre_layer_force[2 * (ca + 1) + d] += xa * t;
+                  fibre_layer_force[2 * c1 + d] -= (1. - xi1) * t;
+                  fibre_layer_force[2 * (c1 + 1) + d] -= xi1 * t;
                 }
             }
+          fibre_elastic[f] = elastic;
+          fibre_largest[f] = largest;
+          // The FE part's axial forces to the fibre, P^T f_x, layer by
+          // layer.
+          for (unsigned int k = 0; k < n_layers; ++k)
+            for (unsigned int v = 0; v < n_vertices; ++v)
+              {
+                const double fx = node_state[3 * (k * n_vertices + v) + 2];
+                if (fx != 0.)
+                  force[index(f, k * bars_per_cell)] +=
+                    projection[std::size_t(v) * n_fibres + f] * fx;
+              }
+          // What the other ranks need: the overlap's ties take every
+          // fibre's nodes there.
+          for (unsigned int j = 0; j < n_overlap_nodes; ++j)
+            {
+              record[2 * n_layers + j] = force[index(f, j)];
+              record[2 * n_layers + n_overlap_nodes + j] =
+                velocity[index(f, j)];
+            }
+          record[n_record - 1] = n_breaking;
+        }
+      gather_fibres(fibre_record, n_record);
+
+      // The bars' transverse forces on the FE nodes, summed in fibre order.
+      std::fill(node_force.begin(), node_force.end(), 0.);
+      double n_breaking = 0.;
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        {
+          const double *const record = &fibre_record[std::size_t(f) * n_record];
+          const auto &vertex         = fibre_vertices[f];
+          const auto &value          = fibre_values[f];
           for (unsigned int k = 0; k < n_layers; ++k)
             for (unsigned int v = 0; v < 4; ++v)
               for (unsigned int d = 0; d < 2; ++d)
                 node_force[2 * (k * n_vertices + vertex[v]) + d] +=
-                  value[v] * layer_force[2 * k + d];
+                  value[v] * record[2 * k + d];
+          if (f < fibre_begin || f >= fibre_end)
+            for (unsigned int j = 0; j < n_overlap_nodes; ++j)
+              {
+                force[index(f, j)] = record[2 * n_layers + j];
+                velocity[index(f, j)] =
+                  record[2 * n_layers + n_overlap_nodes + j];
+              }
+          n_breaking += record[n_record - 1];
         }
       for (const auto &[c, dofs] : owned_nodes)
         for (unsigned int d = 0; d < 2; ++d)
           fe.force[dofs[1 + d]] += node_force[2 * c + d];
-      // The FE part's axial forces to the fibres, P^T f_x, layer by layer.
-      std::fill(node_axial_force.begin(), node_axial_force.end(), 0.);
-      for (const auto &[c, dofs] : owned_nodes)
-        {
-          node_axial_force[c] = fe.force[dofs[0]];
-          fe.force[dofs[0]]   = 0.;
-        }
-      Utilities::MPI::sum(node_axial_force, communicator, node_axial_force);
-      for (unsigned int k = 0; k < n_layers; ++k)
-        for (unsigned int v = 0; v < n_vertices; ++v)
-          {
-            const double fx = node_axial_force[k * n_vertices + v];
-            if (fx == 0.)
-              continue;
-            const double *p = &projection[std::size_t(v) * n_fibres];
-            for (unsigned int f = 0; f < n_fibres; ++f)
-              force[index(f, k * bars_per_cell)] += p[f] * fx;
-          }
+      // Every rank knows every broken bar.
+      if (n_breaking > 0.)
+        gather_fibres(broken, n_nodes);
     }
 
 
     double
     FibreBars::stable_time_step() const
     {
-      // Gershgorin: omega^2 <= 2 sum of the adjacent bars' stiffness over
-      // the node's mass.
-      double rate2 = 0.;
-      for (unsigned int f = 0; f < n_fibres; ++f)
-        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
-          {
-            double xi;
-            double k_sum = cell_weight[cell_of(j, xi)];
-            if (j > 0)
-              k_sum += cell_weight[cell_of(j - 1, xi)];
-            rate2 = std::max(rate2, 2. * stiffness * k_sum / mass[index(f, j)]);
-          }
-      return rate2 > 0. ? 2. / std::sqrt(rate2)
-                        : std::numeric_limits<double>::max();
+      return stable_step;
     }
 
 
     double
     FibreBars::kinetic_energy() const
     {
-      double e = 0.;
-      for (std::size_t i = 0; i < velocity.size(); ++i)
-        e += 0.5 * mass[i] * velocity[i] * velocity[i];
-      return e;
+      std::vector<double> fibre_energy(n_fibres, 0.);
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        for (std::size_t i = index(f, 0); i < index(f + 1, 0); ++i)
+          fibre_energy[f] += 0.5 * mass[i] * velocity[i] * velocity[i];
+      gather_fibres(fibre_energy, 1);
+      return sum_in_fibre_order(fibre_energy);
+    }
+
+
+    double
+    FibreBars::elastic_energy() const
+    {
+      std::vector<double> e = fibre_elastic;
+      gather_fibres(e, 1);
+      return sum_in_fibre_order(e);
+    }
+
+
+    double
+    FibreBars::dissipated_energy() const
+    {
+      std::vector<double> e = fibre_dissipated;
+      gather_fibres(e, 1);
+      return sum_in_fibre_order(e);
+    }
+
+
+    double
+    FibreBars::largest_strain() const
+    {
+      double largest = 0.;
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        largest = std::max(largest, fibre_largest[f]);
+      return Utilities::MPI::max(largest, communicator);
     }
 
 
@@ -377,36 +508,66 @@ namespace YarnImpact
     }
 
 
-    double
-    FibreBars::mean_strain(const unsigned int k) const
+    std::vector<double>
+    FibreBars::mean_strains() const
     {
-      const unsigned int j = k * bars_per_cell;
-      double sum = 0., count = 0.;
-      for (unsigned int f = 0; f < n_fibres; ++f)
-        // The bars j - 1 and j, where they exist.
-        for (unsigned int b = (j > 0 ? j - 1 : 0); b <= j && b + 1 < n_nodes;
-             ++b)
-          if (!broken[index(f, b)])
-            {
-              sum += strain[index(f, b)];
-              count += 1.;
-            }
-      return count > 0. ? sum / count : 0.;
+      // Each fibre's strains of the bars j - 1 and j at each layer's node
+      // j, where they exist and are intact (NaN elsewhere).
+      std::vector<double> layer_strain(
+        std::size_t(n_fibres) * 2 * n_layers,
+        std::numeric_limits<double>::quiet_NaN());
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        for (unsigned int k = 0; k < n_layers; ++k)
+          {
+            const unsigned int j = k * bars_per_cell;
+            for (unsigned int b = (j > 0 ? j - 1 : 0), q = (j > 0 ? 0 : 1);
+                 b <= j && b + 1 < n_nodes;
+                 ++b, ++q)
+              if (!broken[index(f, b)])
+                layer_strain[(std::size_t(f) * n_layers + k) * 2 + q] =
+                  strain[index(f, b)];
+          }
+      gather_fibres(layer_strain, 2 * n_layers);
+      std::vector<double> mean(n_layers, 0.);
+      for (unsigned int k = 0; k < n_layers; ++k)
+        {
+          double sum = 0., count = 0.;
+          for (unsigned int f = 0; f < n_fibres; ++f)
+            for (unsigned int q = 0; q < 2; ++q)
+              {
+                const double e =
+                  layer_strain[(std::size_t(f) * n_layers + k) * 2 + q];
+                if (!std::isnan(e))
+                  {
+                    sum += e;
+                    count += 1.;
+                  }
+              }
+          mean[k] = count > 0. ? sum / count : 0.;
+        }
+      return mean;
     }
 
 
     void
     FibreBars::save_state(Checkpoint::Writer &out) const
     {
+      // Every fibre's state, as one rank would hold it, so that a run may
+      // go on with another number of ranks.
+      auto gathered = [this](std::vector<double> values,
+                             const unsigned int per_fibre) {
+        gather_fibres(values, per_fibre);
+        return values;
+      };
       out.tag("fibre bars");
-      out.put(displacement);
-      out.put(velocity);
-      out.put(force);
-      out.put(strain);
+      out.put(gathered(displacement, n_nodes));
+      out.put(gathered(velocity, n_nodes));
+      out.put(gathered(force, n_nodes));
+      out.put(gathered(strain, n_nodes));
       out.put(broken);
-      out.put(elastic);
-      out.put(dissipated);
-      out.put(largest);
+      out.put(gathered(fibre_elastic, 1));
+      out.put(gathered(fibre_dissipated, 1));
+      out.put(gathered(fibre_largest, 1));
     }
 
 
@@ -419,9 +580,9 @@ namespace YarnImpact
       in.get_same_size(force, "fibre bars' forces");
       in.get_same_size(strain, "fibre bars' strains");
       in.get_same_size(broken, "fibre bars' failure states");
-      in.get(elastic);
-      in.get(dissipated);
-      in.get(largest);
+      in.get_same_size(fibre_elastic, "fibre bars' strain energies");
+      in.get_same_size(fibre_dissipated, "fibre bars' released energies");
+      in.get_same_size(fibre_largest, "fibre bars' largest strains");
     }
 
 
@@ -429,9 +590,10 @@ namespace YarnImpact
     FibreBars::memory_consumption() const
     {
       return displacement.size() * (5 * sizeof(double) + 1) +
-             node_force.size() * 2 * sizeof(double) +
-             layer_force.size() * 2 * sizeof(double) +
-             n_fibres * (4 * sizeof(unsigned int) + 6 * sizeof(double));
+             (node_state.size() + node_force.size()) * sizeof(double) +
+             (fibre_record.size() + layer_axial.size()) * sizeof(double) +
+             n_fibres * (4 * sizeof(unsigned int) + 9 * sizeof(double)) +
+             projection.size() * sizeof(double);
     }
   } // namespace Coupling
 } // namespace YarnImpact

@@ -158,6 +158,8 @@ namespace YarnImpact
         for (unsigned int k = 0; k < b.profile.size(); ++k)
           if (k * layout.station_spacing < middle)
             append(b.profile, k);
+        const std::vector<double> bar_strain =
+          layout.fibre_bars ? bars.mean_strains() : std::vector<double>();
         for (unsigned int k = 0; k < a.profile.size(); ++k)
           {
             const double x = layout.overlap_begin + k * layout.cell_length;
@@ -165,7 +167,7 @@ namespace YarnImpact
               {
                 append(a.profile, k);
                 if (layout.fibre_bars)
-                  p.axial_strain.back() = bars.mean_strain(k);
+                  p.axial_strain.back() = bar_strain[k];
               }
           }
         if (clamp_model)

@@ -63,8 +63,9 @@ namespace YarnImpact
         if (layout.fibre_bars)
           {
             bars.compute_forces(*fe_model, communicator);
-            // The bar nodes outside the overlap but the clamped one.
-            for (unsigned int f = 0; f < bars.n_fibres; ++f)
+            // The own fibres' bar nodes outside the overlap but the clamped
+            // one.
+            for (unsigned int f = bars.fibre_begin; f < bars.fibre_end; ++f)
               for (unsigned int j =
                      layout.overlap_cells * bars.bars_per_cell + 1;
                    j + 1 < bars.n_nodes;

@@ -51,10 +51,18 @@ namespace YarnImpact
      * transverse mass. A bar breaks, for good, when its strain passes
      * Yarn/Failure strain, as a DEM truss does.
      *
-     * Every rank holds and steps all bars (no contact, no search) in the
-     * same order, so the bars are the same on any number of ranks; the FE
-     * nodes' transverse displacements they need are summed from their
-     * owners each step, exactly (one owner, zeros elsewhere).
+     * Each rank steps the bars of its own fibres, a fixed contiguous
+     * range (fibre_begin, fibre_end): every bar's arithmetic is the same on
+     * any number of ranks, and what is summed over fibres (the FE nodes'
+     * forces, the fit P u, the energies) is summed in fibre order from
+     * per-fibre values gathered to every rank, so the run is the same bit
+     * for bit on any number of ranks. Every rank holds all fibres' arrays
+     * (a restart may use another number of ranks); only the own fibres' are
+     * current, but for the overlap's nodes (the overlap's ties, solved on
+     * every rank, need all fibres'), which are gathered each step, and the
+     * broken bars, gathered on the steps that break one. The FE nodes'
+     * transverse displacements are summed from their owners each step,
+     * exactly (one owner, zeros elsewhere).
      */
     class FibreBars
     {
@@ -76,20 +84,21 @@ namespace YarnImpact
              const bool failure,
              const MPI_Comm communicator);
 
-      /** v += dt f / m on every bar node but the clamped one (the last)
-       * [s]. */
+      /** v += dt f / m on the own fibres' bar nodes but the clamped one
+       * (the last) [s]. */
       void
       kick(const double dt);
 
-      /** u += dt v [s]. */
+      /** u += dt v on the own fibres' bar nodes [s]. */
       void
       drift(const double dt);
 
       /** Set the owned FE nodes' axial displacements of @p fe_model to
        * the fibres' fit, P u, and their axial velocities to zero (the bars
-       * carry the axial motion); before the FE part's forces. */
+       * carry the axial motion); before the FE part's forces (collective:
+       * gathers the fibres' displacements at the node layers). */
       void
-      set_continuum_axial(ImpactModel &fe_model) const;
+      set_continuum_axial(ImpactModel &fe_model);
 
       /**
        * The bars' forces at the present displacements: the axial ones on
@@ -97,8 +106,9 @@ namespace YarnImpact
        * the owned FE nodes' forces of @p fe_model, the FE nodes' axial
        * forces moved to the bars through P^T (and zeroed there); breaks
        * bars past the failure strain (collective: sums the FE
-       * displacements and axial forces of the node layers). After the FE
-       * part's forces.
+       * displacements and axial forces of the node layers, gathers the
+       * fibres' forces on the layers and at the overlap's nodes). After the
+       * FE part's forces.
        */
       void
       compute_forces(ImpactModel &fe_model, const MPI_Comm communicator);
@@ -110,32 +120,24 @@ namespace YarnImpact
       stable_time_step() const;
 
       /** Kinetic energy of the axial motion, 1/2 sum m v^2 [J] (modelled
-       * part). */
+       * part; collective). */
       double
       kinetic_energy() const;
 
       /** Strain energy of the intact bars at the last compute_forces(),
-       * 1/2 sum alpha E_f A_f h eps^2 [J]. */
+       * 1/2 sum alpha E_f A_f h eps^2 [J] (collective). */
       double
-      elastic_energy() const
-      {
-        return elastic;
-      }
+      elastic_energy() const;
 
-      /** Strain energy released by the bars broken so far [J]. */
+      /** Strain energy released by the bars broken so far [J]
+       * (collective). */
       double
-      dissipated_energy() const
-      {
-        return dissipated;
-      }
+      dissipated_energy() const;
 
-      /** Largest strain of an intact bar at the last compute_forces()
-       * [-]. */
+      /** Largest strain of an intact bar at the last compute_forces() [-]
+       * (collective). */
       double
-      largest_strain() const
-      {
-        return largest;
-      }
+      largest_strain() const;
 
       /** Broken bars [-]. */
       unsigned long
@@ -150,14 +152,18 @@ namespace YarnImpact
       bool
       fibre_broken(const unsigned int f) const;
 
-      /** Mean strain over the fibres at FE node layer @p k (of the
-       * intact bars next to its bar node), for the station profile [-]. */
-      double
-      mean_strain(const unsigned int k) const;
+      /** Mean strain over the fibres at each FE node layer (of the intact
+       * bars next to its bar node), for the station profile [-]
+       * (collective). */
+      std::vector<double>
+      mean_strains() const;
 
       /** Fibres, bar nodes per fibre, bars per FE cell and FE node layers
        * [-]. */
       unsigned int n_fibres = 0, n_nodes = 0, bars_per_cell = 1, n_layers = 0;
+
+      /** The fibres this rank steps: fibre_begin <= f < fibre_end. */
+      unsigned int fibre_begin = 0, fibre_end = 0;
 
       /** Node j of fibre f: its index in the arrays below. */
       std::size_t
@@ -177,7 +183,8 @@ namespace YarnImpact
        * lumped mass [kg] of each bar node. */
       std::vector<double> displacement, velocity, force, mass;
 
-      /** Write and read the bars' state (every rank the same). */
+      /** Write (collective: gathers every fibre's state first) and read
+       * the bars' state (every rank the same). */
       void
       save_state(Checkpoint::Writer &out) const;
       void
@@ -188,6 +195,36 @@ namespace YarnImpact
       memory_consumption() const;
 
     private:
+      MPI_Comm communicator = MPI_COMM_SELF;
+      /** Each rank's first fibre (and n_fibres last). */
+      std::vector<unsigned int> rank_fibres;
+      /** Bar nodes tied in the overlap (its cells' nodes) [-]. */
+      unsigned int n_overlap_nodes = 0;
+      /** Stable step of the bars alone, fixed at set-up [s]. */
+      double stable_step = 0.;
+      /** Per fibre, each step: its forces on the node layers (y, z per
+       * layer), its overlap nodes' forces and velocities, and its bars
+       * broken in this step [N], [m/s], [-]. */
+      std::vector<double> fibre_record;
+      /** Per fibre: its bars' displacements at the node layers [m]. */
+      std::vector<double> layer_axial;
+      /** Per fibre: strain energy at the last compute_forces(), energy
+       * released by its broken bars, largest strain [J], [J], [-]. */
+      std::vector<double> fibre_elastic, fibre_dissipated, fibre_largest;
+
+      /** Size of one fibre's record in fibre_record. */
+      unsigned int
+      record_size() const
+      {
+        return 2 * n_layers + 2 * n_overlap_nodes + 1;
+      }
+
+      /** Gather @p values, @p per_fibre entries per fibre, from each
+       * fibre's rank to every rank (collective). */
+      template <typename T>
+      void
+      gather_fibres(std::vector<T> &values, const unsigned int per_fibre) const;
+
       /** Reference x of the first bar node [m]; reference y and z of each
        * fibre [m]. */
       double x_begin = 0.;
@@ -207,18 +244,17 @@ namespace YarnImpact
       /** The section's projection P, n_vertices x n_fibres, row-major
        * [-]. */
       std::vector<double> projection;
-      /** The layers' FE axial forces (per node) [N]. */
-      std::vector<double> node_axial_force;
-      /** The layers' transverse displacements (y, z per node) and the
-       * bars' transverse forces on them [m], [N]. */
-      std::vector<double> node_displacement, node_force;
+      /** The layers' transverse displacements and FE axial forces (y, z,
+       * f_x per node), and the bars' transverse forces on them (y, z per
+       * node) [m], [N]. */
+      std::vector<double> node_state, node_force;
       /** Broken bars, by index(f, k) of their first node. */
       std::vector<std::uint8_t> broken;
       /** Bar length h_b [m], stiffness E_f A_f / h_b [N/m], failure strain
        * [-] and whether bars break. */
       double h = 0., stiffness = 0., failure_strain = 0.;
       bool failure = false;
-      /** Bar strains at the last compute_forces() [-]. */
+      /** Bar strains at the last compute_forces() (the own fibres') [-]. */
       std::vector<double> strain;
       /** One fibre's transverse displacement at the layers and the bars'
        * transverse forces on them (y, z per layer) [m], [N]. */
@@ -237,7 +273,6 @@ namespace YarnImpact
         xi                   = double(j - c * bars_per_cell) / bars_per_cell;
         return c;
       }
-      double elastic = 0., dissipated = 0., largest = 0.;
     };
   } // namespace Coupling
 } // namespace YarnImpact
