@@ -21,21 +21,6 @@ namespace YarnImpact
     using namespace dealii;
 
 
-    namespace
-    {
-      /** Sum of per-fibre values in fibre order, the same on any number of
-       * ranks. */
-      double
-      sum_in_fibre_order(const std::vector<double> &values)
-      {
-        double sum = 0.;
-        for (const double v : values)
-          sum += v;
-        return sum;
-      }
-    } // namespace
-
-
     void
     FibreBars::set_up(ImpactModel &fe_model,
                       const Triangulation<2> &section,
@@ -94,6 +79,10 @@ namespace YarnImpact
             mass[index(f, j + 1)] += m;
           }
 
+      inverse_mass.resize(n_all);
+      for (std::size_t i = 0; i < n_all; ++i)
+        inverse_mass[i] = 1. / mass[i];
+
       // Where each fibre lies in the section.
       fibre_vertices.resize(n_fibres);
       fibre_values.resize(n_fibres);
@@ -121,12 +110,10 @@ namespace YarnImpact
       set_up_projection();
       node_force.assign(2 * n_layers * n_vertices, 0.);
       layer_displacement.assign(2 * n_layers, 0.);
-      layer_force.assign(2 * n_layers, 0.);
       fibre_record.assign(std::size_t(n_fibres) * record_size(), 0.);
       layer_axial.assign(std::size_t(n_fibres) * n_layers, 0.);
-      fibre_elastic.assign(n_fibres, 0.);
       fibre_dissipated.assign(n_fibres, 0.);
-      fibre_largest.assign(n_fibres, 0.);
+      axial_tension.assign(n_nodes, 0.);
 
       // Gershgorin: omega^2 <= 2 sum of the adjacent bars' stiffness over
       // the node's mass.
@@ -171,6 +158,14 @@ namespace YarnImpact
                        communicator);
       AssertThrowMPI(ierr);
     }
+
+
+    // The gathers fibre_bars_observables.cc uses.
+    template void
+    FibreBars::gather_fibres(std::vector<double> &, const unsigned int) const;
+    template void
+    FibreBars::gather_fibres(std::vector<std::uint8_t> &,
+                             const unsigned int) const;
 
 
     void
@@ -261,7 +256,7 @@ namespace YarnImpact
         for (unsigned int j = 0; j + 1 < n_nodes; ++j)
           {
             const std::size_t i = index(f, j);
-            velocity[i] += dt * force[i] / mass[i];
+            velocity[i] += dt * force[i] * inverse_mass[i];
           }
     }
 
@@ -294,10 +289,6 @@ namespace YarnImpact
 
       const unsigned int n_record = record_size();
       for (unsigned int f = fibre_begin; f < fibre_end; ++f)
-        std::fill(force.begin() + index(f, 0),
-                  force.begin() + index(f + 1, 0),
-                  0.);
-      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
         {
           const auto &vertex = fibre_vertices[f];
           const auto &value  = fibre_values[f];
@@ -314,68 +305,71 @@ namespace YarnImpact
           double *const record = &fibre_record[std::size_t(f) * n_record];
           double *const fibre_layer_force = record;
           std::fill(fibre_layer_force, fibre_layer_force + 2 * n_layers, 0.);
-          double elastic = 0., largest = 0., n_breaking = 0.;
-          // Bar node j's transverse displacement, linear between layers.
-          auto transverse = [&](const unsigned int j,
-                                const unsigned int d,
-                                unsigned int &c,
-                                double &xi) {
-            c = cell_of(j, xi);
-            return (1. - xi) * layer_displacement[2 * c + d] +
-                   xi * layer_displacement[2 * (c + 1) + d];
-          };
-          unsigned int c0, c1;
-          double xi0, xi1;
-          double y0 = transverse(0, 0, c0, xi0), z0 = transverse(0, 1, c0, xi0);
-          for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          double n_breaking        = 0.;
+          double *const u          = &displacement[index(f, 0)];
+          double *const e          = &strain[index(f, 0)];
+          double *const q          = axial_tension.data();
+          std::uint8_t *const gone = &broken[index(f, 0)];
+          const double inverse_h   = 1. / h;
+          // Between two node layers the transverse displacement is linear
+          // in x, so every bar of a cell has the same transverse chord
+          // (dy, dz): per bar only its axial chord and length remain, in
+          // loops without branches, and the cell's bars pull on its two
+          // layers with the sum of their s = k (l - h) / l.
+          for (unsigned int c = 0; c + 1 < n_layers; ++c)
             {
-              const double y1     = transverse(j + 1, 0, c1, xi1),
-                           z1     = transverse(j + 1, 1, c1, xi1);
-              const std::size_t i = index(f, j);
-              const double e[3]   = {h + displacement[i + 1] - displacement[i],
-                                     y1 - y0,
-                                     z1 - z0};
-              const unsigned int ca = c0;
-              const double xa       = xi0;
-              y0                    = y1;
-              z0                    = z1;
-              c0                    = c1;
-              xi0                   = xi1;
-              strain[i]             = 0.;
-              if (broken[i])
-                continue;
-              const double l =
-                std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-              const double eps = l / h - 1.;
+              const unsigned int j0 = c * bars_per_cell,
+                                 j1 = std::min(j0 + bars_per_cell, n_nodes - 1);
+              const double dy       = (layer_displacement[2 * (c + 1)] -
+                                 layer_displacement[2 * c]) /
+                                bars_per_cell,
+                           dz = (layer_displacement[2 * (c + 1) + 1] -
+                                 layer_displacement[2 * c + 1]) /
+                                bars_per_cell;
+              const double t2 = dy * dy + dz * dz;
               // The bar lies in the cell of its first node.
-              const double k_w = cell_weight[ca] * stiffness;
-              if (failure && eps > failure_strain)
+              const double k_w = cell_weight[c] * stiffness;
+              for (unsigned int j = j0; j < j1; ++j)
                 {
-                  broken[i] = 1;
-                  n_breaking += 1.;
-                  fibre_dissipated[f] += 0.5 * k_w * (l - h) * (l - h);
-                  continue;
+                  const double ex = h + u[j + 1] - u[j];
+                  const double l  = std::sqrt(ex * ex + t2);
+                  e[j]            = gone[j] ? 0. : l * inverse_h - 1.;
                 }
-              strain[i] = eps;
-              largest   = std::max(largest, eps);
-              elastic += 0.5 * k_w * (l - h) * (l - h);
-              // The force on the bar's first node (the second gets its
-              // opposite), as a DEM truss; the transverse parts go to the
-              // layers by the nodes' linear shape values.
-              const double s = k_w * (l - h) / l;
-              force[i] += s * e[0];
-              force[i + 1] -= s * e[0];
-              for (unsigned int d = 0; d < 2; ++d)
+              if (failure)
+                for (unsigned int j = j0; j < j1; ++j)
+                  if (e[j] > failure_strain)
+                    {
+                      // Broken for good; its strain energy is released.
+                      const double d = e[j] * h;
+                      fibre_dissipated[f] += 0.5 * k_w * d * d;
+                      gone[j] = 1;
+                      e[j]    = 0.;
+                      n_breaking += 1.;
+                    }
+              // Four partial sums in a fixed order: the same on any rank.
+              double s_sum[4] = {0., 0., 0., 0.};
+              for (unsigned int j = j0; j < j1; ++j)
                 {
-                  const double t = s * e[1 + d];
-                  fibre_layer_force[2 * ca + d] += (1. - xa) * t;
-                  fibre_layer_force[2 * (ca + 1) + d] += xa * t;
-                  fibre_layer_force[2 * c1 + d] -= (1. - xi1) * t;
-                  fibre_layer_force[2 * (c1 + 1) + d] -= xi1 * t;
+                  const double ex = h + u[j + 1] - u[j];
+                  const double l  = std::sqrt(ex * ex + t2);
+                  const double s  = gone[j] ? 0. : k_w * (l - h) / l;
+                  q[j]            = s * ex;
+                  s_sum[(j - j0) % 4] += s;
                 }
+              const double s_cell =
+                ((s_sum[0] + s_sum[1]) + (s_sum[2] + s_sum[3])) / bars_per_cell;
+              fibre_layer_force[2 * c] += s_cell * dy;
+              fibre_layer_force[2 * c + 1] += s_cell * dz;
+              fibre_layer_force[2 * (c + 1)] -= s_cell * dy;
+              fibre_layer_force[2 * (c + 1) + 1] -= s_cell * dz;
             }
-          fibre_elastic[f] = elastic;
-          fibre_largest[f] = largest;
+          // Each node: the axial tension of the bar after it less that of
+          // the bar before it.
+          double *const fibre_force = &force[index(f, 0)];
+          fibre_force[0]            = q[0];
+          for (unsigned int j = 1; j + 1 < n_nodes; ++j)
+            fibre_force[j] = q[j] - q[j - 1];
+          fibre_force[n_nodes - 1] = -q[n_nodes - 2];
           // The FE part's axial forces to the fibre, P^T f_x, layer by
           // layer.
           for (unsigned int k = 0; k < n_layers; ++k)
@@ -433,167 +427,6 @@ namespace YarnImpact
     FibreBars::stable_time_step() const
     {
       return stable_step;
-    }
-
-
-    double
-    FibreBars::kinetic_energy() const
-    {
-      std::vector<double> fibre_energy(n_fibres, 0.);
-      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
-        for (std::size_t i = index(f, 0); i < index(f + 1, 0); ++i)
-          fibre_energy[f] += 0.5 * mass[i] * velocity[i] * velocity[i];
-      gather_fibres(fibre_energy, 1);
-      return sum_in_fibre_order(fibre_energy);
-    }
-
-
-    double
-    FibreBars::elastic_energy() const
-    {
-      std::vector<double> e = fibre_elastic;
-      gather_fibres(e, 1);
-      return sum_in_fibre_order(e);
-    }
-
-
-    double
-    FibreBars::dissipated_energy() const
-    {
-      std::vector<double> e = fibre_dissipated;
-      gather_fibres(e, 1);
-      return sum_in_fibre_order(e);
-    }
-
-
-    double
-    FibreBars::largest_strain() const
-    {
-      double largest = 0.;
-      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
-        largest = std::max(largest, fibre_largest[f]);
-      return Utilities::MPI::max(largest, communicator);
-    }
-
-
-    unsigned long
-    FibreBars::n_broken() const
-    {
-      return std::count(broken.begin(), broken.end(), 1);
-    }
-
-
-    std::vector<unsigned long>
-    FibreBars::broken_per_millimetre() const
-    {
-      std::vector<unsigned long> count;
-      for (unsigned int f = 0; f < n_fibres; ++f)
-        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
-          if (broken[index(f, j)])
-            {
-              const unsigned int mm = (node_x(j) + 0.5 * h) * 1e3;
-              if (count.size() <= mm)
-                count.resize(mm + 1, 0);
-              ++count[mm];
-            }
-      return count;
-    }
-
-
-    bool
-    FibreBars::fibre_broken(const unsigned int f) const
-    {
-      const auto b = broken.begin() + index(f, 0);
-      return std::find(b, b + n_nodes, 1) != b + n_nodes;
-    }
-
-
-    std::vector<double>
-    FibreBars::mean_strains() const
-    {
-      // Each fibre's strains of the bars j - 1 and j at each layer's node
-      // j, where they exist and are intact (NaN elsewhere).
-      std::vector<double> layer_strain(
-        std::size_t(n_fibres) * 2 * n_layers,
-        std::numeric_limits<double>::quiet_NaN());
-      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
-        for (unsigned int k = 0; k < n_layers; ++k)
-          {
-            const unsigned int j = k * bars_per_cell;
-            for (unsigned int b = (j > 0 ? j - 1 : 0), q = (j > 0 ? 0 : 1);
-                 b <= j && b + 1 < n_nodes;
-                 ++b, ++q)
-              if (!broken[index(f, b)])
-                layer_strain[(std::size_t(f) * n_layers + k) * 2 + q] =
-                  strain[index(f, b)];
-          }
-      gather_fibres(layer_strain, 2 * n_layers);
-      std::vector<double> mean(n_layers, 0.);
-      for (unsigned int k = 0; k < n_layers; ++k)
-        {
-          double sum = 0., count = 0.;
-          for (unsigned int f = 0; f < n_fibres; ++f)
-            for (unsigned int q = 0; q < 2; ++q)
-              {
-                const double e =
-                  layer_strain[(std::size_t(f) * n_layers + k) * 2 + q];
-                if (!std::isnan(e))
-                  {
-                    sum += e;
-                    count += 1.;
-                  }
-              }
-          mean[k] = count > 0. ? sum / count : 0.;
-        }
-      return mean;
-    }
-
-
-    void
-    FibreBars::save_state(Checkpoint::Writer &out) const
-    {
-      // Every fibre's state, as one rank would hold it, so that a run may
-      // go on with another number of ranks.
-      auto gathered = [this](std::vector<double> values,
-                             const unsigned int per_fibre) {
-        gather_fibres(values, per_fibre);
-        return values;
-      };
-      out.tag("fibre bars");
-      out.put(gathered(displacement, n_nodes));
-      out.put(gathered(velocity, n_nodes));
-      out.put(gathered(force, n_nodes));
-      out.put(gathered(strain, n_nodes));
-      out.put(broken);
-      out.put(gathered(fibre_elastic, 1));
-      out.put(gathered(fibre_dissipated, 1));
-      out.put(gathered(fibre_largest, 1));
-    }
-
-
-    void
-    FibreBars::load_state(Checkpoint::Reader &in)
-    {
-      in.tag("fibre bars");
-      in.get_same_size(displacement, "fibre bars' displacements");
-      in.get_same_size(velocity, "fibre bars' velocities");
-      in.get_same_size(force, "fibre bars' forces");
-      in.get_same_size(strain, "fibre bars' strains");
-      in.get_same_size(broken, "fibre bars' failure states");
-      in.get_same_size(fibre_elastic, "fibre bars' strain energies");
-      in.get_same_size(fibre_dissipated, "fibre bars' released energies");
-      in.get_same_size(fibre_largest, "fibre bars' largest strains");
-    }
-
-
-    std::size_t
-    FibreBars::memory_consumption() const
-    {
-      return displacement.size() * (5 * sizeof(double) + 1) +
-             (node_state.size() + node_force.size()) * sizeof(double) +
-             (fibre_record.size() + layer_axial.size()) * sizeof(double) +
-             n_fibres * (4 * sizeof(unsigned int) + 9 * sizeof(double)) +
-             projection.size() * sizeof(double);
     }
   } // namespace Coupling
 } // namespace YarnImpact

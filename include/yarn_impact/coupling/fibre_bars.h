@@ -125,7 +125,7 @@ namespace YarnImpact
       kinetic_energy() const;
 
       /** Strain energy of the intact bars at the last compute_forces(),
-       * 1/2 sum alpha E_f A_f h eps^2 [J] (collective). */
+       * 1/2 sum alpha (E_f A_f / h) (eps h)^2 [J] (collective). */
       double
       elastic_energy() const;
 
@@ -179,9 +179,9 @@ namespace YarnImpact
         return x_begin + j * h;
       }
 
-      /** Axial displacement [m], velocity [m/s], force [N] and weighted
-       * lumped mass [kg] of each bar node. */
-      std::vector<double> displacement, velocity, force, mass;
+      /** Axial displacement [m], velocity [m/s], force [N], weighted
+       * lumped mass [kg] and its inverse [1/kg] of each bar node. */
+      std::vector<double> displacement, velocity, force, mass, inverse_mass;
 
       /** Write (collective: gathers every fibre's state first) and read
        * the bars' state (every rank the same). */
@@ -208,9 +208,10 @@ namespace YarnImpact
       std::vector<double> fibre_record;
       /** Per fibre: its bars' displacements at the node layers [m]. */
       std::vector<double> layer_axial;
-      /** Per fibre: strain energy at the last compute_forces(), energy
-       * released by its broken bars, largest strain [J], [J], [-]. */
-      std::vector<double> fibre_elastic, fibre_dissipated, fibre_largest;
+      /** Per fibre: energy released by its broken bars [J]. */
+      std::vector<double> fibre_dissipated;
+      /** One fibre's bars' axial tensions, s e_x per bar [N]. */
+      std::vector<double> axial_tension;
 
       /** Size of one fibre's record in fibre_record. */
       unsigned int
@@ -256,9 +257,9 @@ namespace YarnImpact
       bool failure = false;
       /** Bar strains at the last compute_forces() (the own fibres') [-]. */
       std::vector<double> strain;
-      /** One fibre's transverse displacement at the layers and the bars'
-       * transverse forces on them (y, z per layer) [m], [N]. */
-      std::vector<double> layer_displacement, layer_force;
+      /** One fibre's transverse displacement at the layers (y, z per
+       * layer) [m]. */
+      std::vector<double> layer_displacement;
 
       /** Build the projection P from the fibres' places in the section. */
       void

@@ -1,0 +1,201 @@
+// The fibre bars' observables (energies, strains, broken bars) and their
+// checkpoint: collective where they sum over the fibres, in fibre order, so
+// that they are the same on any number of ranks.
+
+#include <yarn_impact/coupling/fibre_bars.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    using namespace dealii;
+
+
+    namespace
+    {
+      /** Sum of per-fibre values in fibre order, the same on any number of
+       * ranks. */
+      double
+      sum_in_fibre_order(const std::vector<double> &values)
+      {
+        double sum = 0.;
+        for (const double v : values)
+          sum += v;
+        return sum;
+      }
+    } // namespace
+
+
+    double
+    FibreBars::kinetic_energy() const
+    {
+      std::vector<double> fibre_energy(n_fibres, 0.);
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        for (std::size_t i = index(f, 0); i < index(f + 1, 0); ++i)
+          fibre_energy[f] += 0.5 * mass[i] * velocity[i] * velocity[i];
+      gather_fibres(fibre_energy, 1);
+      return sum_in_fibre_order(fibre_energy);
+    }
+
+
+    double
+    FibreBars::elastic_energy() const
+    {
+      // 1/2 k (l - h)^2 = 1/2 k (eps h)^2 per intact bar (a broken one
+      // has eps = 0).
+      std::vector<double> fibre_energy(n_fibres, 0.);
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          {
+            double xi;
+            const double d = strain[index(f, j)] * h;
+            fibre_energy[f] +=
+              0.5 * cell_weight[cell_of(j, xi)] * stiffness * d * d;
+          }
+      gather_fibres(fibre_energy, 1);
+      return sum_in_fibre_order(fibre_energy);
+    }
+
+
+    double
+    FibreBars::dissipated_energy() const
+    {
+      std::vector<double> e = fibre_dissipated;
+      gather_fibres(e, 1);
+      return sum_in_fibre_order(e);
+    }
+
+
+    double
+    FibreBars::largest_strain() const
+    {
+      double largest = 0.;
+      for (std::size_t i = index(fibre_begin, 0); i < index(fibre_end, 0); ++i)
+        largest = std::max(largest, strain[i]);
+      return Utilities::MPI::max(largest, communicator);
+    }
+
+
+    unsigned long
+    FibreBars::n_broken() const
+    {
+      return std::count(broken.begin(), broken.end(), 1);
+    }
+
+
+    std::vector<unsigned long>
+    FibreBars::broken_per_millimetre() const
+    {
+      std::vector<unsigned long> count;
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          if (broken[index(f, j)])
+            {
+              const unsigned int mm = (node_x(j) + 0.5 * h) * 1e3;
+              if (count.size() <= mm)
+                count.resize(mm + 1, 0);
+              ++count[mm];
+            }
+      return count;
+    }
+
+
+    bool
+    FibreBars::fibre_broken(const unsigned int f) const
+    {
+      const auto b = broken.begin() + index(f, 0);
+      return std::find(b, b + n_nodes, 1) != b + n_nodes;
+    }
+
+
+    std::vector<double>
+    FibreBars::mean_strains() const
+    {
+      // Each fibre's strains of the bars j - 1 and j at each layer's node
+      // j, where they exist and are intact (NaN elsewhere).
+      std::vector<double> layer_strain(
+        std::size_t(n_fibres) * 2 * n_layers,
+        std::numeric_limits<double>::quiet_NaN());
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        for (unsigned int k = 0; k < n_layers; ++k)
+          {
+            const unsigned int j = k * bars_per_cell;
+            for (unsigned int b = (j > 0 ? j - 1 : 0), q = (j > 0 ? 0 : 1);
+                 b <= j && b + 1 < n_nodes;
+                 ++b, ++q)
+              if (!broken[index(f, b)])
+                layer_strain[(std::size_t(f) * n_layers + k) * 2 + q] =
+                  strain[index(f, b)];
+          }
+      gather_fibres(layer_strain, 2 * n_layers);
+      std::vector<double> mean(n_layers, 0.);
+      for (unsigned int k = 0; k < n_layers; ++k)
+        {
+          double sum = 0., count = 0.;
+          for (unsigned int f = 0; f < n_fibres; ++f)
+            for (unsigned int q = 0; q < 2; ++q)
+              {
+                const double e =
+                  layer_strain[(std::size_t(f) * n_layers + k) * 2 + q];
+                if (!std::isnan(e))
+                  {
+                    sum += e;
+                    count += 1.;
+                  }
+              }
+          mean[k] = count > 0. ? sum / count : 0.;
+        }
+      return mean;
+    }
+
+
+    void
+    FibreBars::save_state(Checkpoint::Writer &out) const
+    {
+      // Every fibre's state, as one rank would hold it, so that a run may
+      // go on with another number of ranks.
+      auto gathered = [this](std::vector<double> values,
+                             const unsigned int per_fibre) {
+        gather_fibres(values, per_fibre);
+        return values;
+      };
+      out.tag("fibre bars");
+      out.put(gathered(displacement, n_nodes));
+      out.put(gathered(velocity, n_nodes));
+      out.put(gathered(force, n_nodes));
+      out.put(gathered(strain, n_nodes));
+      out.put(broken);
+      out.put(gathered(fibre_dissipated, 1));
+    }
+
+
+    void
+    FibreBars::load_state(Checkpoint::Reader &in)
+    {
+      in.tag("fibre bars");
+      in.get_same_size(displacement, "fibre bars' displacements");
+      in.get_same_size(velocity, "fibre bars' velocities");
+      in.get_same_size(force, "fibre bars' forces");
+      in.get_same_size(strain, "fibre bars' strains");
+      in.get_same_size(broken, "fibre bars' failure states");
+      in.get_same_size(fibre_dissipated, "fibre bars' released energies");
+    }
+
+
+    std::size_t
+    FibreBars::memory_consumption() const
+    {
+      return displacement.size() * (6 * sizeof(double) + 1) +
+             (node_state.size() + node_force.size()) * sizeof(double) +
+             (fibre_record.size() + layer_axial.size()) * sizeof(double) +
+             n_fibres * (4 * sizeof(unsigned int) + 7 * sizeof(double)) +
+             projection.size() * sizeof(double);
+    }
+  } // namespace Coupling
+} // namespace YarnImpact
