@@ -9,67 +9,6 @@ namespace YarnImpact
 {
   namespace Coupling
   {
-    namespace
-    {
-      /** In-place Cholesky A = L L^T of the dense n x n row-major @p a, L
-       * in the lower triangle (zeros above); throws naming @p what and the
-       * node where A is not positive definite. */
-      void
-      cholesky(std::vector<double> &a, const unsigned int n, const char *what)
-      {
-        for (unsigned int j = 0; j < n; ++j)
-          {
-            double *Lj = &a[std::size_t(j) * n];
-            double d   = Lj[j];
-            for (unsigned int k = 0; k < j; ++k)
-              d -= Lj[k] * Lj[k];
-            if (!(d > 0.))
-              throw std::runtime_error(
-                std::string("Bridging constraint: ") + what +
-                " is not positive definite at node " + std::to_string(j));
-            Lj[j] = std::sqrt(d);
-            for (unsigned int i = j + 1; i < n; ++i)
-              {
-                double *Li = &a[std::size_t(i) * n];
-                double s   = Li[j];
-                for (unsigned int k = 0; k < j; ++k)
-                  s -= Li[k] * Lj[k];
-                Li[j] = s / Lj[j];
-              }
-            for (unsigned int k = j + 1; k < n; ++k)
-              Lj[k] = 0.;
-          }
-      }
-
-      /** Solve L L^T x = b in place for component @p d of @p b (stride 3)
-       * with the factor @p L of cholesky(). */
-      void
-      cholesky_solve(const std::vector<double> &L,
-                     const unsigned int n,
-                     double *b,
-                     const unsigned int d)
-      {
-        // L y = b
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const double *Li = &L[std::size_t(i) * n];
-            double s         = b[3 * i + d];
-            for (unsigned int k = 0; k < i; ++k)
-              s -= Li[k] * b[3 * k + d];
-            b[3 * i + d] = s / Li[i];
-          }
-        // L^T x = y
-        for (unsigned int i = n; i-- > 0;)
-          {
-            double s = b[3 * i + d];
-            for (unsigned int k = i + 1; k < n; ++k)
-              s -= L[std::size_t(k) * n + i] * b[3 * k + d];
-            b[3 * i + d] = s / L[std::size_t(i) * n + i];
-          }
-      }
-    } // namespace
-
-
     BridgingConstraint::BridgingConstraint(const unsigned int n_nodes)
       : node_mass(n_nodes, 0.)
       , row_start(1, 0)
@@ -82,15 +21,6 @@ namespace YarnImpact
     {
       node_mass.at(node) = mass;
       factorized         = false;
-    }
-
-
-    void
-    BridgingConstraint::set_projected(const unsigned int component,
-                                      const bool projected_)
-    {
-      projected.at(component) = projected_;
-      factorized              = false;
     }
 
 
@@ -159,23 +89,31 @@ namespace YarnImpact
               factor[std::size_t(column[p]) * n + column[q]] +=
                 particle_mass[i] * value[p] * value[q];
         }
-      // B = N^T diag(m) N, the particles' mass on the nodes, for the
-      // projected components: K less diag(M).
-      projection_factor.clear();
-      if (projected[0] || projected[1] || projected[2])
+      // In-place Cholesky K = L L^T, L in the lower triangle.
+      for (unsigned int j = 0; j < n; ++j)
         {
-          projection_factor = factor;
-          for (unsigned int j = 0; j < n; ++j)
-            projection_factor[std::size_t(j) * n + j] -= node_mass[j];
-          cholesky(projection_factor,
-                   n,
-                   "the particles' mass on the coupled nodes (a projected "
-                   "tie needs particles around every coupled node)");
+          double *Lj = &factor[std::size_t(j) * n];
+          double d   = Lj[j];
+          for (unsigned int k = 0; k < j; ++k)
+            d -= Lj[k] * Lj[k];
+          if (!(d > 0.))
+            throw std::runtime_error(
+              "Bridging constraint: the coupled mass matrix is not positive "
+              "definite at node " +
+              std::to_string(j) +
+              " (a coupled node with neither mass nor a particle near it)");
+          Lj[j] = std::sqrt(d);
+          for (unsigned int i = j + 1; i < n; ++i)
+            {
+              double *Li = &factor[std::size_t(i) * n];
+              double s   = Li[j];
+              for (unsigned int k = 0; k < j; ++k)
+                s -= Li[k] * Lj[k];
+              Li[j] = s / Lj[j];
+            }
+          for (unsigned int k = j + 1; k < n; ++k)
+            Lj[k] = 0.;
         }
-      cholesky(factor,
-               n,
-               "the coupled mass matrix (a coupled node with neither mass "
-               "nor a particle near it)");
       factorized = true;
     }
 
@@ -183,7 +121,24 @@ namespace YarnImpact
     void
     BridgingConstraint::solve(double *b, const unsigned int d) const
     {
-      cholesky_solve(factor, node_mass.size(), b, d);
+      const unsigned int n = node_mass.size();
+      // L y = b
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const double *Li = &factor[std::size_t(i) * n];
+          double s         = b[3 * i + d];
+          for (unsigned int k = 0; k < i; ++k)
+            s -= Li[k] * b[3 * k + d];
+          b[3 * i + d] = s / Li[i];
+        }
+      // L^T x = y
+      for (unsigned int i = n; i-- > 0;)
+        {
+          double s = b[3 * i + d];
+          for (unsigned int k = i + 1; k < n; ++k)
+            s -= factor[std::size_t(k) * n + i] * b[3 * k + d];
+          b[3 * i + d] = s / factor[std::size_t(i) * n + i];
+        }
     }
 
 
@@ -201,34 +156,6 @@ namespace YarnImpact
       for (unsigned int d = 0; d < 3; ++d)
         solve(node_acceleration, d);
       interpolate(node_acceleration, particle_acceleration);
-      if (!projection_factor.empty())
-        {
-          // The particles' own accelerations f_i / m_i less their mass-
-          // weighted projection on the nodes, N g with B g = N^T f_p: the
-          // part the continuum cannot carry, which the particles keep.
-          const unsigned int n = node_mass.size();
-          std::vector<double> g(3 * n, 0.);
-          for (unsigned int i = 0; i < particle_mass.size(); ++i)
-            for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
-              for (unsigned int d = 0; d < 3; ++d)
-                if (projected[d])
-                  g[3 * column[p] + d] += value[p] * particle_force[3 * i + d];
-          for (unsigned int d = 0; d < 3; ++d)
-            if (projected[d])
-              cholesky_solve(projection_factor, n, g.data(), d);
-          for (unsigned int i = 0; i < particle_mass.size(); ++i)
-            if (particle_mass[i] > 0.)
-              for (unsigned int d = 0; d < 3; ++d)
-                if (projected[d])
-                  {
-                    double mean = 0.;
-                    for (unsigned int p = row_start[i]; p < row_start[i + 1];
-                         ++p)
-                      mean += value[p] * g[3 * column[p] + d];
-                    particle_acceleration[3 * i + d] +=
-                      particle_force[3 * i + d] / particle_mass[i] - mean;
-                  }
-        }
       if (constraint_force != nullptr)
         for (unsigned int i = 0; i < particle_mass.size(); ++i)
           for (unsigned int d = 0; d < 3; ++d)
@@ -283,10 +210,8 @@ namespace YarnImpact
     std::size_t
     BridgingConstraint::memory_consumption() const
     {
-      return sizeof(double) *
-               (factor.capacity() + projection_factor.capacity() +
-                node_mass.capacity() + particle_mass.capacity() +
-                value.capacity()) +
+      return sizeof(double) * (factor.capacity() + node_mass.capacity() +
+                               particle_mass.capacity() + value.capacity()) +
              sizeof(unsigned int) * (row_start.capacity() + column.capacity());
     }
 

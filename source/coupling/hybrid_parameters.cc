@@ -67,18 +67,6 @@ namespace YarnImpact
         "(doc/hybrid.md section 3.4); needs FE/Constitutive law = "
         "Charmetant and Clamp DEM length = 0.");
       prm.declare_entry(
-        "Transverse tie",
-        "spheres",
-        Patterns::Selection("spheres|projection"),
-        "Model = hybrid: how the overlap ties the spheres' transverse (y, "
-        "z) motion to the continuum. spheres: every sphere moves with the "
-        "continuum's field at its place (the bridging domain's strong "
-        "constraint). projection: only the spheres' mass-weighted "
-        "projection on the FE shape functions (their mean motion around "
-        "each FE node) follows the continuum; each fibre keeps its motion "
-        "relative to the others across the section, which the continuum "
-        "cannot represent (doc/hybrid.md section 2.5).");
-      prm.declare_entry(
         "Fibre bars per FE cell",
         "0",
         Patterns::Integer(0),
@@ -109,9 +97,8 @@ namespace YarnImpact
               "must be 0 (no DEM part at the clamp) or a positive length "
               "(got " +
                 prm.get("Clamp DEM length") + ")");
-      fibre_bars            = prm.get("Far field") == "fibre bars";
-      bars_per_cell         = prm.get_integer("Fibre bars per FE cell");
-      transverse_projection = prm.get("Transverse tie") == "projection";
+      fibre_bars    = prm.get("Far field") == "fibre bars";
+      bars_per_cell = prm.get_integer("Fibre bars per FE cell");
       prm.leave_subsection();
     }
 
@@ -153,10 +140,9 @@ namespace YarnImpact
       l.dem_half_length = l.dem_trusses * l.station_spacing;
       l.first_coupled_station =
         l.dem_trusses - l.overlap_cells * l.cell_trusses;
-      l.overlap_begin         = l.first_coupled_station * l.station_spacing;
-      l.fe_end                = half;
-      l.fibre_bars            = hybrid.fibre_bars;
-      l.transverse_projection = hybrid.transverse_projection;
+      l.overlap_begin = l.first_coupled_station * l.station_spacing;
+      l.fe_end        = half;
+      l.fibre_bars    = hybrid.fibre_bars;
       l.bars_per_cell =
         hybrid.bars_per_cell > 0 ? hybrid.bars_per_cell : l.cell_trusses;
       if (hybrid.clamp_dem_length > 0.)

@@ -50,8 +50,6 @@ namespace YarnImpact
       constraint = BridgingConstraint(n_coupled);
       for (unsigned int c = 0; c < n_coupled; ++c)
         constraint.set_node_mass(c, node_mass[c]);
-      for (unsigned int d = 1; d < 3; ++d)
-        constraint.set_projected(d, layout.transverse_projection);
 
       // The overlap's spheres: fibre f of station s is particle
       // (s - station_begin) n_f + f, tied to the trilinear field at its

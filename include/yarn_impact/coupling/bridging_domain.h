@@ -1,7 +1,6 @@
 #ifndef yarn_impact_coupling_bridging_domain_h
 #define yarn_impact_coupling_bridging_domain_h
 
-#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -54,25 +53,6 @@ namespace YarnImpact
      * (what crosses the interface) is lambda . v_i summed over the
      * particles.
      *
-     * A component may instead be tied in projection (set_projected()):
-     * only the particles' mass-weighted projection on the continuum's shape
-     * functions follows the nodes, sum_i N_J(X_i) m_i (v_i - sum_K
-     * N_K(X_i) v_K) = 0 for every node J, and the particles keep the rest
-     * of their motion, the part the continuum cannot represent (fibres
-     * moving relative to each other across a section). With the
-     * multipliers m_i N Lambda on the particles and -B Lambda on the nodes
-     * (B = N^T diag(m) N), the nodes' accelerations are the strong tie's,
-     * K a = f + N^T f_p, and each particle's is
-     *
-     *   a_i = sum_J N_J(X_i) a_J + f_i / m_i - sum_J N_J(X_i) g_J,
-     *   B g = N^T f_p,
-     *
-     * the strong tie's plus its own acceleration less its projection (B is
-     * factorised once too). Momentum is exact as before (the multipliers on
-     * the particles sum to 1^T B Lambda, those on the nodes to its
-     * opposite), and the multipliers do no work on velocities that meet
-     * the projected constraints.
-     *
      * Vectors of three components per node or particle are stored
      * interleaved: [x0, y0, z0, x1, ...].
      */
@@ -87,12 +67,6 @@ namespace YarnImpact
        * continuum's mass there, multiplied by its weight [kg]. */
       void
       set_node_mass(const unsigned int node, const double mass);
-
-      /** Tie component @p component (0, 1, 2: x, y, z) of the particles
-       * in projection (true) instead of one by one (false, the default);
-       * before factorize(). */
-      void
-      set_projected(const unsigned int component, const bool projected);
 
       /**
        * Add a constrained particle.
@@ -109,11 +83,10 @@ namespace YarnImpact
                    const std::vector<double> &shape_values);
 
       /**
-       * Assemble K (and B if a component is projected) and factorise it.
-       * Throws std::runtime_error naming the cause if a particle's shape
-       * values do not sum to one within 1e-12, a mass is negative, or K is
-       * not positive definite (a coupled node with neither mass nor a
-       * particle in its support; for B, without a particle).
+       * Assemble K and factorise it. Throws std::runtime_error naming the
+       * cause if a particle's shape values do not sum to one within 1e-12,
+       * a mass is negative, or K is not positive definite (a coupled node
+       * with neither mass nor a particle in its support).
        */
       void
       factorize();
@@ -140,8 +113,7 @@ namespace YarnImpact
        * constrained particles, 3 per particle [N]
        * @param[out] node_acceleration 3 per node [m/s^2]
        * @param[out] particle_acceleration 3 per particle, the interpolated
-       * node accelerations (for a projected component, plus the particle's
-       * own acceleration less its projection) [m/s^2]
+       * node accelerations [m/s^2]
        * @param[out] constraint_force if not null, lambda: the force of the
        * continuum on each particle, 3 per particle (its opposite acts on
        * the nodes through N^T) [N]
@@ -168,8 +140,8 @@ namespace YarnImpact
       interpolate(const double *node_values, double *particle_values) const;
 
       /** Largest |v_i - sum_J N_J(X_i) v_J| over the particles and
-       * components: how far the velocities are from the strong constraints
-       * (not a measure for projected components) [m/s]. */
+       * components: how far the velocities are from the constraints
+       * [m/s]. */
       double
       largest_violation(const double *node_velocity,
                         const double *particle_velocity) const;
@@ -187,12 +159,9 @@ namespace YarnImpact
       std::vector<unsigned int> row_start;
       std::vector<unsigned int> column;
       std::vector<double> value;
-      /** Lower Cholesky factors of K and (empty when no component is
-       * projected) of B, dense, row-major n x n. */
-      std::vector<double> factor, projection_factor;
-      /** Components tied in projection. */
-      std::array<bool, 3> projected = {{false, false, false}};
-      bool factorized               = false;
+      /** Lower Cholesky factor of K, dense, row-major n x n. */
+      std::vector<double> factor;
+      bool factorized = false;
 
       /** Solve K x = b in place for one component (stride 3, offset d). */
       void

@@ -41,10 +41,6 @@ namespace YarnImpact
       bool fibre_bars = false;
       /** Fibre bars per FE cell; 0: one per DEM truss [-]. */
       unsigned int bars_per_cell = 0;
-      /** Whether the overlap ties the spheres' transverse motion in
-       * projection (`Transverse tie = projection`, doc/hybrid.md section
-       * 2.5) instead of sphere by sphere. */
-      bool transverse_projection = false;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
@@ -83,8 +79,6 @@ namespace YarnImpact
        * many per FE cell [-]. */
       bool fibre_bars            = false;
       unsigned int bars_per_cell = 0;
-      /** Whether the overlaps tie the transverse motion in projection. */
-      bool transverse_projection = false;
 
       /** Particle weight beta of overlap cell @p k (0 at a - w) [-]. */
       double
