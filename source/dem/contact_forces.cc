@@ -42,14 +42,12 @@ namespace YarnImpact
                 for (std::uint32_t p = p0; p < p1; ++p)
                   {
                     const std::size_t j = pairs[p].j;
-                    double f[3], diss = 0.;
+                    double e[3], f[3], diss = 0.;
+                    separation(xi, yi, zi, x + 3 * j, 1., 1., e);
                     if (!pair_contact_force(law,
                                             d,
                                             d2,
-                                            xi,
-                                            yi,
-                                            zi,
-                                            x + 3 * j,
+                                            e,
                                             v + 3 * i,
                                             v + 3 * j,
                                             1.,
@@ -112,14 +110,18 @@ namespace YarnImpact
                 const std::size_t i = mp.i, j = mp.j;
                 const double sx = (mp.axes & 1) ? -1. : 1.,
                              sz = (mp.axes & 2) ? -1. : 1.;
-                double f[3], diss = 0.;
+                double e[3], f[3], diss = 0.;
+                separation(x[3 * i],
+                           x[3 * i + 1],
+                           x[3 * i + 2],
+                           x + 3 * j,
+                           sx,
+                           sz,
+                           e);
                 if (!pair_contact_force(law,
                                         d,
                                         d2,
-                                        x[3 * i],
-                                        x[3 * i + 1],
-                                        x[3 * i + 2],
-                                        x + 3 * j,
+                                        e,
                                         v + 3 * i,
                                         v + 3 * j,
                                         sx,

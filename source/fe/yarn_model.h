@@ -15,6 +15,7 @@
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <mpi.h>
@@ -38,8 +39,9 @@ namespace YarnImpact
      * constitutive law, so that the law inlines into that loop
      * (constitutive_law.h).
      *
-     * Set-up, step phases and create_model() are in fe_model.cc;
-     * observables and output in fe_observables.cc.
+     * The set-up is in fe_setup.cc; the stable step, the step phases and
+     * create_model() in fe_model.cc; observables and output in
+     * fe_observables.cc.
      */
     template <class Law>
     class YarnModel : public ImpactModel
@@ -61,8 +63,10 @@ namespace YarnImpact
         return "fe";
       }
 
-      /** Mesh, dofs, lumped mass, constraints, contact nodes; reports the
-       * mesh and the contact step to @p out. */
+      /** Mesh, dofs, lumped mass, constraints, contact nodes, in the steps
+       * make_grid(), setup_system(), setup_cells(), setup_nodes() and
+       * setup_initial_state(); reports the mesh and the contact step to
+       * @p out. */
       void
       setup(const Projectile &projectile, std::ostream &out) override;
 
@@ -147,6 +151,104 @@ namespace YarnImpact
       }
 
     private:
+      /** Whether this is a part of a hybrid yarn (FE::Parameters::
+       * layer_weight), not the whole yarn. */
+      bool
+      is_part() const
+      {
+        return !parameters.layer_weight.empty();
+      }
+
+      /** Whether a symmetry plane x = 0 bounds the whole yarn's model. */
+      bool
+      reduced() const
+      {
+        return shared.general.symmetry !=
+               YarnImpact::Parameters::Symmetry::none;
+      }
+
+      /** Reference x where a hybrid's part ends [m]. */
+      double
+      part_end() const
+      {
+        return parameters.part_end < 0. ? 0.5 * shared.yarn.length
+                                        : parameters.part_end;
+      }
+
+      /** Reference x where the modelled length begins [m]: the start of a
+       * hybrid's part, the symmetry plane, or the left clamp. */
+      double
+      x_begin() const
+      {
+        return is_part()   ? parameters.part_begin
+               : reduced() ? 0.
+                           : -0.5 * shared.yarn.length;
+      }
+
+      /** Set-up step 1: the coarse mesh of the yarn (or of a hybrid's part),
+       * refined globally. */
+      void
+      make_grid();
+
+      /** Set-up step 2: the dofs, the distributed vectors with their
+       * ghosts, and the layers and stations along the modelled length. */
+      void
+      setup_system();
+
+      /**
+       * Set-up step 3: the data of the owned and ghost cells in the force
+       * loop's order (by CellId; the body says why): their dofs, shape
+       * gradients and weights at the quadrature points (CellData), local
+       * axis, layer and volume, and the lumped mass. Returns the lumped
+       * area [m^2] of the lateral surface by node (on its x dof); throws
+       * if an owned node lacks a cell.
+       */
+      VectorType
+      setup_cells();
+
+      /** For setup_cells(): the dofs of @p cell, its reference coordinates
+       * and its nodes' lumped mass [kg], of the continuum weight @p weight
+       * [-], also into @p mass_check if the cell is owned. */
+      void
+      add_cell_nodes(
+        const typename dealii::DoFHandler<3>::active_cell_iterator &cell,
+        const dealii::FEValues<3> &fe_values,
+        const double weight,
+        VectorType &mass_check);
+
+      /** For setup_cells(): the shape gradients [1/m] and quadrature
+       * weights JxW [m^3] of the cell of @p fe_values, of the continuum
+       * weight @p weight [-] (and a hybrid's section quadrature). */
+      void
+      add_cell_quadrature(const dealii::FEValues<3> &fe_values,
+                          const double weight);
+
+      /** For setup_cells(): the local fibre axis, fibre length [m], depth
+       * below the struck face [-], volume [m^3] and layer of @p cell. */
+      void
+      add_cell_geometry(
+        const typename dealii::DoFHandler<3>::active_cell_iterator &cell,
+        const dealii::FEValues<3> &fe_values);
+
+      /** For setup_cells(): the lumped area [m^2] of the lateral faces of
+       * @p cell, added to @p area on its nodes' x dofs. */
+      void
+      add_lateral_area(
+        const typename dealii::DoFHandler<3>::active_cell_iterator &cell,
+        dealii::FEFaceValues<3> &fe_face_values,
+        VectorType &area) const;
+
+      /** Set-up step 4: the owned nodes, their stations, their constraints
+       * (clamps, symmetry planes: inverse mass 0) and the projectile
+       * contact of the free lateral ones, of lumped area @p area [m^2]. */
+      void
+      setup_nodes(const VectorType &area);
+
+      /** Set-up step 5: the mass [kg] and top [m] of the yarn, the contact's
+       * stable step [s], the state at rest and its section widths. */
+      void
+      setup_initial_state();
+
       /** Whether some cell layer has broken through, leaving no load path
        * between the clamps. Collective. */
       bool
@@ -175,7 +277,7 @@ namespace YarnImpact
       std::vector<double> reference_coordinate;
 
       /** Owned and ghost cells, in the order of their CellIds, as the
-       * force loop sees them (setup() says why). */
+       * force loop sees them (setup_cells() says why). */
       CellData cells;
       /** The owned ones among them (indices into cells). */
       std::vector<unsigned int> owned_cells;

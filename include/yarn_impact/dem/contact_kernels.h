@@ -40,22 +40,24 @@ namespace YarnImpact
 
 
       /**
-       * The contact of sphere i with (the image of) sphere j, as
-       * separation(), with the fibre diameter @p d [m] (@p d2 = d^2
-       * [m^2]): if they overlap, the force @p f [N] on i by @p law from the
-       * relative velocity of i (@p vi) and the image of j (@p vj) [m/s],
-       * the tangential history @p xi_t [m] (updated) over the step @p dt
-       * [s], the energy dissipated in the step added to @p dissipated [J],
-       * and true; false (nothing touched) if they do not.
+       * The one sphere-pair contact of the DEM's fibres: the impact model's
+       * listed and mirror pairs (their separation by separation()) and the
+       * periodic segment of the elementary tests (its separation taken to
+       * the nearest periodic image) all call it, so that the contact
+       * identified on the segment is the one of the impact runs. With the
+       * vector @p e [m] from the image of sphere j to sphere i and the fibre
+       * diameter @p d [m] (@p d2 = d^2 [m^2]): if they overlap, the force
+       * @p f [N] on i by @p law from the relative velocity of i (@p vi) and
+       * the image (@p sx, @p sz as in separation()) of j (@p vj) [m/s], the
+       * tangential history @p xi_t [m] (updated) over the step @p dt [s],
+       * the energy dissipated in the step added to @p dissipated [J], and
+       * true; false (nothing touched) if they do not.
        */
       inline bool
       pair_contact_force(const FibreContactLaw &law,
                          const double d,
                          const double d2,
-                         const double xi,
-                         const double yi,
-                         const double zi,
-                         const double *xj,
+                         const double *e,
                          const double *vi,
                          const double *vj,
                          const double sx,
@@ -65,8 +67,7 @@ namespace YarnImpact
                          double *f,
                          double &dissipated)
       {
-        double e[3];
-        const double r2 = separation(xi, yi, zi, xj, sx, sz, e);
+        const double r2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
         if (r2 >= d2)
           return false;
         const double dist  = std::sqrt(r2);
@@ -81,7 +82,7 @@ namespace YarnImpact
 
       /**
        * The elastic energy [J] of the contact of sphere i at @p x_i with
-       * (the image of) sphere j at @p xj, as pair_contact_force(), with its
+       * (the image of) sphere j at @p xj, as separation(), with its
        * tangential history @p xi_t [m]: the energy twin of
        * pair_contact_force(), on the same geometry.
        */

@@ -1,5 +1,7 @@
 // The forces on the periodic segment of the DEM elementary tests: trusses
-// (with failure), fibre contacts, the rigid walls and the local damping.
+// (with failure), fibre contacts (by the impact model's pair kernel), the
+// rigid walls and the local damping.
+#include <yarn_impact/dem/contact_kernels.h>
 #include <yarn_impact/dem/elementary/periodic_segment.h>
 
 #include <algorithm>
@@ -61,7 +63,8 @@ namespace YarnImpact
         // Fibre contacts, from both sides (each rank evaluates the pairs of
         // its own spheres): the law is odd in (n, v, xi), so both sides
         // give the same force bit for bit and the sum does not depend on
-        // the ranks.
+        // the ranks. The pair kernel is the impact model's
+        // (contact_kernels.h), on the nearest periodic image.
         const double d2 = d * d;
         for (std::size_t i = i_begin; i < i_end; ++i)
           {
@@ -70,14 +73,25 @@ namespace YarnImpact
             for (std::uint32_t p = start[li]; p < start[li + 1]; ++p)
               {
                 const std::size_t j = neighbour[p];
-                double ex           = x[3 * i] - x[3 * j];
-                ex                  = nearest_image(ex, Lx);
-                const double ey     = x[3 * i + 1] - x[3 * j + 1],
-                             ez     = x[3 * i + 2] - x[3 * j + 2];
-                const double r2     = ex * ex + ey * ey + ez * ez;
+                const double e[3]   = {nearest_image(x[3 * i] - x[3 * j], Lx),
+                                       x[3 * i + 1] - x[3 * j + 1],
+                                       x[3 * i + 2] - x[3 * j + 2]};
                 double *xi          = &history[3 * p];
-                if (r2 >= d2)
+                double f[3], diss = 0.;
+                if (!pair_contact_force(fibre_law,
+                                        d,
+                                        d2,
+                                        e,
+                                        &v[3 * i],
+                                        &v[3 * j],
+                                        1.,
+                                        1.,
+                                        dt,
+                                        xi,
+                                        f,
+                                        diss))
                   {
+                    // Separated: the contact ends with its history.
                     if (touching[p])
                       {
                         touching[p] = 0;
@@ -85,32 +99,18 @@ namespace YarnImpact
                       }
                     continue;
                   }
-                touching[p]        = 1;
-                const double dist  = std::sqrt(r2);
-                const double nv[3] = {ex / dist, ey / dist, ez / dist};
-                const double vr[3] = {v[3 * i] - v[3 * j],
-                                      v[3 * i + 1] - v[3 * j + 1],
-                                      v[3 * i + 2] - v[3 * j + 2]};
-                double f[3], diss = 0.;
-                Contact::contact_force(fibre_law,
-                                       d - dist,
-                                       nv,
-                                       vr,
-                                       dt,
-                                       xi,
-                                       f,
-                                       diss);
+                touching[p] = 1;
                 F[3 * i] += f[0];
                 F[3 * i + 1] += f[1];
                 F[3 * i + 2] += f[2];
                 dissipated[li] += 0.5 * diss;
                 // Half of f (x) (x_j - x_i) from each side.
-                w[0] -= 0.5 * f[0] * ex;
-                w[1] -= 0.5 * f[1] * ey;
-                w[2] -= 0.5 * f[2] * ez;
-                w[3] -= 0.25 * (f[1] * ez + f[2] * ey);
-                w[4] -= 0.25 * (f[0] * ey + f[1] * ex);
-                w[5] -= 0.25 * (f[0] * ez + f[2] * ex);
+                w[0] -= 0.5 * f[0] * e[0];
+                w[1] -= 0.5 * f[1] * e[1];
+                w[2] -= 0.5 * f[2] * e[2];
+                w[3] -= 0.25 * (f[1] * e[2] + f[2] * e[1]);
+                w[4] -= 0.25 * (f[0] * e[1] + f[1] * e[0]);
+                w[5] -= 0.25 * (f[0] * e[2] + f[2] * e[0]);
               }
           }
 
