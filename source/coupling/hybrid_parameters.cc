@@ -307,11 +307,11 @@ namespace YarnImpact
           e.bytes += c.bytes;
           e.n_elements += c.n_elements;
         }
-      // The fibre bars: a few doubles per fibre and FE node layer, on
-      // every rank.
+      // The fibre bars: every rank holds every fibre's arrays (six
+      // doubles and a flag per bar node, FibreBars::memory_consumption).
       if (l.fibre_bars)
         e.bytes +=
-          48. * shared.yarn.n_fibres * (l.fe_cells * l.bars_per_cell + 1);
+          49. * shared.yarn.n_fibres * (l.fe_cells * l.bars_per_cell + 1);
       e.parameter = "Hybrid/DEM half-length";
       return e;
     }
