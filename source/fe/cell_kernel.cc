@@ -212,6 +212,17 @@ namespace YarnImpact
     } // namespace
 
 
+    const char *
+    cell_kernel_variant()
+    {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+      if (cpu_has_avx2_fma)
+        return "avx2+fma";
+#endif
+      return "portable";
+    }
+
+
     template <class Law>
     double
     internal_forces(

@@ -42,7 +42,7 @@ namespace YarnImpact
           << cells_per_layer << " per section, " << n_layers
           << " along the modelled length), " << dof_handler.n_dofs()
           << " dofs, " << Utilities::MPI::n_mpi_processes(communicator)
-          << " MPI rank(s)\n"
+          << " MPI rank(s), cell kernel: " << cell_kernel_variant() << "\n"
           << "[fe] contact penalty " << parameters.contact.penalty
           << " Pa/m: stable step of a surface node on it "
           << contact_time_step * 1e9 << " ns\n";

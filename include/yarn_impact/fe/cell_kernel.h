@@ -174,6 +174,14 @@ namespace YarnImpact
     };
 
     /**
+     * The variant of the cell kernel this process runs, for the run's
+     * report: "avx2+fma" on a CPU with both unless the environment variable
+     * YARN_IMPACT_PORTABLE_KERNEL is set, "portable" otherwise.
+     */
+    const char *
+    cell_kernel_variant();
+
+    /**
      * The internal forces of all active cells of @p cells at the
      * displacement @p displacement [m] (ghosts up to date): subtracts each
      * cell's forces [N] from @p force's local entries, cell after cell in
