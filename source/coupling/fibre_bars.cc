@@ -329,11 +329,13 @@ namespace YarnImpact
               const double t2 = dy * dy + dz * dz;
               // The bar lies in the cell of its first node.
               const double k_w = cell_weight[c] * stiffness;
+              // The bars' lengths, kept in q until their tensions replace
+              // them below.
               for (unsigned int j = j0; j < j1; ++j)
                 {
                   const double ex = h + u[j + 1] - u[j];
-                  const double l  = std::sqrt(ex * ex + t2);
-                  e[j]            = gone[j] ? 0. : l * inverse_h - 1.;
+                  q[j]            = std::sqrt(ex * ex + t2);
+                  e[j]            = gone[j] ? 0. : q[j] * inverse_h - 1.;
                 }
               if (failure)
                 for (unsigned int j = j0; j < j1; ++j)
@@ -351,7 +353,7 @@ namespace YarnImpact
               for (unsigned int j = j0; j < j1; ++j)
                 {
                   const double ex = h + u[j + 1] - u[j];
-                  const double l  = std::sqrt(ex * ex + t2);
+                  const double l  = q[j];
                   const double s  = gone[j] ? 0. : k_w * (l - h) / l;
                   q[j]            = s * ex;
                   s_sum[(j - j0) % 4] += s;

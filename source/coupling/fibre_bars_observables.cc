@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace YarnImpact
 {
@@ -17,19 +18,15 @@ namespace YarnImpact
     using namespace dealii;
 
 
-    namespace
+    double
+    FibreBars::sum_over_fibres(std::vector<double> per_fibre) const
     {
-      /** Sum of per-fibre values in fibre order, the same on any number of
-       * ranks. */
-      double
-      sum_in_fibre_order(const std::vector<double> &values)
-      {
-        double sum = 0.;
-        for (const double v : values)
-          sum += v;
-        return sum;
-      }
-    } // namespace
+      gather_fibres(per_fibre, 1);
+      double sum = 0.;
+      for (const double v : per_fibre)
+        sum += v;
+      return sum;
+    }
 
 
     double
@@ -39,8 +36,7 @@ namespace YarnImpact
       for (unsigned int f = fibre_begin; f < fibre_end; ++f)
         for (std::size_t i = index(f, 0); i < index(f + 1, 0); ++i)
           fibre_energy[f] += 0.5 * mass[i] * velocity[i] * velocity[i];
-      gather_fibres(fibre_energy, 1);
-      return sum_in_fibre_order(fibre_energy);
+      return sum_over_fibres(std::move(fibre_energy));
     }
 
 
@@ -58,17 +54,14 @@ namespace YarnImpact
             fibre_energy[f] +=
               0.5 * cell_weight[cell_of(j, xi)] * stiffness * d * d;
           }
-      gather_fibres(fibre_energy, 1);
-      return sum_in_fibre_order(fibre_energy);
+      return sum_over_fibres(std::move(fibre_energy));
     }
 
 
     double
     FibreBars::dissipated_energy() const
     {
-      std::vector<double> e = fibre_dissipated;
-      gather_fibres(e, 1);
-      return sum_in_fibre_order(e);
+      return sum_over_fibres(fibre_dissipated);
     }
 
 

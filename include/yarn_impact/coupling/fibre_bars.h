@@ -210,7 +210,8 @@ namespace YarnImpact
       std::vector<double> layer_axial;
       /** Per fibre: energy released by its broken bars [J]. */
       std::vector<double> fibre_dissipated;
-      /** One fibre's bars' axial tensions, s e_x per bar [N]. */
+      /** One fibre's bars' lengths, then their axial tensions s e_x, per
+       * bar [m], [N]. */
       std::vector<double> axial_tension;
 
       /** Size of one fibre's record in fibre_record. */
@@ -219,6 +220,12 @@ namespace YarnImpact
       {
         return 2 * n_layers + 2 * n_overlap_nodes + 1;
       }
+
+      /** Sum of one value per fibre (the own fibres' set, the others'
+       * gathered) in fibre order: the same on any number of ranks
+       * (collective). */
+      double
+      sum_over_fibres(std::vector<double> per_fibre) const;
 
       /** Gather @p values, @p per_fibre entries per fibre, from each
        * fibre's rank to every rank (collective). */
