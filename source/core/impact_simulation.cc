@@ -64,6 +64,31 @@ namespace YarnImpact
     });
     snapshots.emplace_back(time * 1e6, record);
     write_pvd();
+    write_fibre_breaks();
+  }
+
+
+  void
+  ImpactSimulation::Implementation::write_fibre_breaks() const
+  {
+    if (!model->records_fibre_breaks())
+      return;
+    const std::vector<FibreBreak> breaks = model->fibre_breaks();
+    collective_output(communicator, [&] {
+      if (is_root)
+        {
+          AtomicFile csv(parameters.output.directory + "/breaks_" +
+                         model->name() + ".csv");
+          std::ostream &o = csv.stream();
+          o << "time [us],part,fibre,reference x [mm],reference y [mm],"
+               "reference z [mm]\n"
+            << std::setprecision(10);
+          for (const FibreBreak &b : breaks)
+            o << b.time * 1e6 << ',' << b.part << ',' << b.fibre << ','
+              << b.x * 1e3 << ',' << b.y * 1e3 << ',' << b.z * 1e3 << '\n';
+          csv.commit();
+        }
+    });
   }
 
 
@@ -430,6 +455,7 @@ namespace YarnImpact
   {
     if (checkpoints.keep_final_state && !loop.finished)
       write_checkpoint(loop, timer, true);
+    write_fibre_breaks();
     RunResult &result     = loop.result;
     result.model_remarks  = model->remarks();
     result.n_steps        = loop.schedule.step();

@@ -170,6 +170,10 @@ namespace YarnImpact
      * (collective). */
     void
     write_pvd() const;
+    /** If the model records its fibre breaks: all of them so far to
+     * `breaks_<name>.csv`, whole or not at all (collective). */
+    void
+    write_fibre_breaks() const;
 
     /** Add @p row to the history; an OutputError on any rank stops all. */
     void

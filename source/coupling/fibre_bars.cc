@@ -68,6 +68,7 @@ namespace YarnImpact
       force.assign(n_all, 0.);
       strain.assign(n_all, 0.);
       broken.assign(n_all, 0);
+      break_time.assign(n_all, 0.);
       mass.assign(n_all, 0.);
       for (unsigned int f = 0; f < n_fibres; ++f)
         for (unsigned int j = 0; j + 1 < n_nodes; ++j)
@@ -266,6 +267,7 @@ namespace YarnImpact
     {
       for (std::size_t i = index(fibre_begin, 0); i < index(fibre_end, 0); ++i)
         displacement[i] += dt * velocity[i];
+      time += dt;
     }
 
 
@@ -344,8 +346,9 @@ namespace YarnImpact
                       // Broken for good; its strain energy is released.
                       const double d = e[j] * h;
                       fibre_dissipated[f] += 0.5 * k_w * d * d;
-                      gone[j] = 1;
-                      e[j]    = 0.;
+                      gone[j]                 = 1;
+                      e[j]                    = 0.;
+                      break_time[index(f, j)] = time;
                       n_breaking += 1.;
                     }
               // Four partial sums in a fixed order: the same on any rank.

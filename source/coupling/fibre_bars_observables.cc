@@ -99,6 +99,37 @@ namespace YarnImpact
     }
 
 
+    std::vector<FibreBreak>
+    FibreBars::fibre_breaks(const MPI_Comm communicator) const
+    {
+      // Three doubles per break of the own fibres (time, fibre, bar): one
+      // array to exchange.
+      std::vector<double> local;
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          if (broken[index(f, j)])
+            local.insert(local.end(),
+                         {break_time[index(f, j)], double(f), double(j)});
+      std::vector<FibreBreak> breaks;
+      for (const std::vector<double> &r :
+           dealii::Utilities::MPI::all_gather(communicator, local))
+        for (std::size_t k = 0; k + 2 < r.size(); k += 3)
+          {
+            FibreBreak b;
+            b.time               = r[k];
+            b.part               = "bars";
+            b.fibre              = static_cast<unsigned int>(r[k + 1]);
+            const unsigned int j = static_cast<unsigned int>(r[k + 2]);
+            b.x                  = 0.5 * (node_x(j) + node_x(j + 1));
+            b.y                  = fibre_y[b.fibre];
+            b.z                  = fibre_z[b.fibre];
+            breaks.push_back(b);
+          }
+      std::sort(breaks.begin(), breaks.end(), break_less);
+      return breaks;
+    }
+
+
     bool
     FibreBars::fibre_broken(const unsigned int f) const
     {
@@ -164,6 +195,8 @@ namespace YarnImpact
       out.put(gathered(force, n_nodes));
       out.put(gathered(strain, n_nodes));
       out.put(broken);
+      out.put(gathered(break_time, n_nodes));
+      out.put(time);
       out.put(gathered(fibre_dissipated, 1));
     }
 
@@ -177,6 +210,8 @@ namespace YarnImpact
       in.get_same_size(force, "fibre bars' forces");
       in.get_same_size(strain, "fibre bars' strains");
       in.get_same_size(broken, "fibre bars' failure states");
+      in.get_same_size(break_time, "fibre bars' break times");
+      in.get(time);
       in.get_same_size(fibre_dissipated, "fibre bars' released energies");
     }
 

@@ -207,6 +207,31 @@ namespace YarnImpact
             bars.load_state(in);
         }
 
+        bool
+        records_fibre_breaks() const override
+        {
+          return true;
+        }
+
+        /** The DEM parts' broken trusses (part "dem", and "clamp" for the
+         * DEM part at the clamp) and the broken fibre bars ("bars"). */
+        std::vector<FibreBreak>
+        fibre_breaks() const override
+        {
+          std::vector<FibreBreak> breaks = dem_model->fibre_breaks();
+          if (clamp_model)
+            for (FibreBreak b : clamp_model->fibre_breaks())
+              {
+                b.part = "clamp";
+                breaks.push_back(b);
+              }
+          if (layout.fibre_bars)
+            for (const FibreBreak &b : bars.fibre_breaks(communicator))
+              breaks.push_back(b);
+          std::sort(breaks.begin(), breaks.end(), break_less);
+          return breaks;
+        }
+
         std::string
         remarks() const override
         {

@@ -25,6 +25,9 @@ namespace YarnImpact
         out.put(broken);
         out.put(xi_p);
         out.put(proj_step);
+        out.put(dissipated);
+        out.put(break_time);
+        out.put(time);
         out.put(st_xlo);
         out.put(st_xhi);
         out.put(st_ymax);
@@ -43,6 +46,9 @@ namespace YarnImpact
         in.get_same_size(broken, "truss states");
         in.get_same_size(xi_p, "projectile contact histories");
         in.get_same_size(proj_step, "projectile contact steps");
+        in.get_same_size(dissipated, "dissipated energies");
+        in.get_same_size(break_time, "truss break times");
+        in.get(time);
         in.get_same_size(st_xlo, "cross-section extents");
         in.get_same_size(st_xhi, "cross-section extents");
         in.get_same_size(st_ymax, "cross-section heights");

@@ -20,9 +20,8 @@ namespace YarnImpact
                            const double *__restrict v,
                            double *__restrict F,
                            const double dt,
-                           double &dissipated)
+                           double *__restrict dissipated)
       {
-        double diss_sum = dissipated;
         const double d2 = d * d;
         for (ListBlock &B : blocks)
           {
@@ -37,8 +36,9 @@ namespace YarnImpact
                   continue;
                 const double xi = x[3 * i], yi = x[3 * i + 1],
                              zi = x[3 * i + 2];
-                // The force on i is summed over its row first, then added.
-                double fx = 0., fy = 0., fz = 0.;
+                // The force on i is summed over its row first, then added;
+                // so is the energy its row dissipates.
+                double fx = 0., fy = 0., fz = 0., row_diss = 0.;
                 for (std::uint32_t p = p0; p < p1; ++p)
                   {
                     const std::size_t j = pairs[p].j;
@@ -76,14 +76,15 @@ namespace YarnImpact
                     F[3 * j] -= w * f[0];
                     F[3 * j + 1] -= w * f[1];
                     F[3 * j + 2] -= w * f[2];
-                    diss_sum += w * decomposition.own_factor(i, j) * diss;
+                    row_diss += w * diss;
                   }
                 F[3 * i] += fx;
                 F[3 * i + 1] += fy;
                 F[3 * i + 2] += fz;
+                if (decomposition.owned(i))
+                  dissipated[i] += row_diss;
               }
           }
-        dissipated = diss_sum;
       }
 
 
@@ -96,9 +97,8 @@ namespace YarnImpact
                             const double *__restrict v,
                             double *__restrict F,
                             const double dt,
-                            double &dissipated)
+                            double *__restrict dissipated)
       {
-        double diss_sum = dissipated;
         const double d2 = d * d;
         for (ListBlock &B : blocks)
           {
@@ -151,11 +151,10 @@ namespace YarnImpact
                     F[3 * j + 1] -= w * f[1];
                     F[3 * j + 2] -= w * sz * f[2];
                   }
-                diss_sum += w * (i == j ? 0.5 : 1.) *
-                            decomposition.own_factor(i, j) * diss;
+                if (decomposition.owned(i))
+                  dissipated[i] += w * (i == j ? 0.5 : 1.) * diss;
               }
           }
-        dissipated = diss_sum;
       }
     } // namespace internal
   }   // namespace DEM

@@ -87,12 +87,13 @@ namespace YarnImpact
         drift(const double dt) override
         {
           internal::drift(chains, decomposition, lists, spheres, dt);
+          spheres.time += dt;
         }
 
         Observables
         observables() const override
         {
-          return meter.measure(projectile_contact, dissipated_local);
+          return meter.measure(projectile_contact);
         }
 
         AxialProperties
@@ -132,7 +133,6 @@ namespace YarnImpact
           out.tag("dem model");
           out.put(projectile_speed);
           out.put(projectile_contact);
-          out.put(dissipated_local);
           decomposition.save(out);
           spheres.save(out);
           lists.save(out);
@@ -145,7 +145,6 @@ namespace YarnImpact
           in.tag("dem model");
           in.get(projectile_speed);
           in.get(projectile_contact);
-          in.get(dissipated_local);
           decomposition.load(in);
           spheres.load(in);
           lists.load(in);
@@ -157,6 +156,18 @@ namespace YarnImpact
         statistics() const
         {
           return lists.statistics(spheres.step_count);
+        }
+
+        bool
+        records_fibre_breaks() const override
+        {
+          return true;
+        }
+
+        std::vector<FibreBreak>
+        fibre_breaks() const override
+        {
+          return gather_fibre_breaks(chains, decomposition, spheres);
         }
 
         /** See DEM::coupling_view(). */
@@ -225,8 +236,6 @@ namespace YarnImpact
 
         /** Where the projectile was at the last force evaluation. */
         ProjectileContactState projectile_contact;
-        /** Energy dissipated on this rank so far [J]. */
-        double dissipated_local = 0.;
       };
 
 
@@ -343,6 +352,8 @@ namespace YarnImpact
         spheres.broken.assign(n_local, 0);
         spheres.xi_p.assign(3 * n_local, 0.);
         spheres.proj_step.assign(n_local, 0);
+        spheres.dissipated.assign(n_local, 0.);
+        spheres.break_time.assign(n_local, 0.);
         spheres.st_xlo.assign(n_st, infinity);
         spheres.st_xhi.assign(n_st, -infinity);
         spheres.st_ymax.assign(n_st, -infinity);
@@ -445,8 +456,8 @@ namespace YarnImpact
         const double *x = spheres.pos.data();
         const double *v = spheres.vel.data();
         double *F       = spheres.frc.data();
-        // The energy dissipated in this evaluation, summed in this order.
-        double dissipated = 0.;
+        // The energy dissipated, added to each sphere's account.
+        double *dissipated = spheres.dissipated.data();
         truss_forces(chains,
                      decomposition,
                      failure,
@@ -454,6 +465,8 @@ namespace YarnImpact
                      x,
                      F,
                      spheres.broken.data(),
+                     spheres.time,
+                     spheres.break_time.data(),
                      dissipated);
         fibre_contact_forces(lists.blocks,
                              fibre_law,
@@ -480,9 +493,7 @@ namespace YarnImpact
                                                     decomposition,
                                                     spheres,
                                                     dt,
-                                                    projectile_contact,
-                                                    dissipated);
-        dissipated_local += dissipated;
+                                                    projectile_contact);
         if (decomposition.n_ranks > 1)
           reaction = dealii::Utilities::MPI::sum(reaction, decomposition.comm);
         return chains.factor * reaction;

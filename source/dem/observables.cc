@@ -2,6 +2,7 @@
 // failed trusses, strains, cut-through and the station profile (analysis
 // measures the wave fronts on it).
 
+#include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/dem/contact_kernels.h>
 #include <yarn_impact/dem/integration.h>
 #include <yarn_impact/dem/observables.h>
@@ -68,8 +69,7 @@ namespace YarnImpact
 
 
       Observables
-      ObservablesMeter::measure(const ProjectileContactState &contact_at,
-                                const double dissipated) const
+      ObservablesMeter::measure(const ProjectileContactState &contact_at) const
       {
         const unsigned int nf = chains.nf, n_st = chains.n_st,
                            n_prof = chains.n_prof, s_impact = chains.s_impact;
@@ -91,8 +91,19 @@ namespace YarnImpact
         const std::uint64_t step_count              = spheres.step_count;
 
         Observables o;
-        // Sums: kinetic, elastic, contact, dissipated, failed.
-        double kinetic = 0., elastic = 0., contact = 0., failed = 0.;
+        // Reproducible sums: kinetic, elastic, contact, dissipated, failed,
+        // then per profile station the second moment of the fibre centres
+        // about z = 0 and its weight.
+        enum : unsigned int
+        {
+          kinetic,
+          elastic,
+          contact,
+          dissipated,
+          failed,
+          second_moment
+        };
+        ReproducibleSum sums(second_moment + 2 * n_prof);
         // Maxima: max strain, then the profile (strain, deflection, width,
         // position) of n_prof stations.
         auto &buf = profile_buffer;
@@ -101,9 +112,6 @@ namespace YarnImpact
         double *pstrain = buf.data() + 1, *pdefl = pstrain + n_prof,
                *pwidth = pdefl + n_prof, *ppos = pwidth + n_prof;
 
-        // Second moment of the fibre centres about z = 0 and their weight,
-        // per profile station (summed over the ranks).
-        std::vector<double> pz2(2 * n_prof, 0.);
         for (unsigned int s = st_begin; s < st_end; ++s)
           {
             const unsigned int k = (s > s_impact ? s - s_impact : s_impact - s);
@@ -120,10 +128,12 @@ namespace YarnImpact
                       kicked_velocity(chains, decomposition, spheres, i, c);
                     v2 += vc * vc;
                   }
-                kinetic += 0.5 * m * v2;
+                sums.add(kinetic, 0.5 * m * v2);
+                sums.add(dissipated, spheres.dissipated[i]);
                 defl = std::max(defl, fy[f] - pos[3 * i + 1]);
-                pz2[k] += fw[f] * pos[3 * i + 2] * pos[3 * i + 2];
-                pz2[n_prof + k] += fw[f];
+                sums.add(second_moment + k,
+                         fw[f] * pos[3 * i + 2] * pos[3 * i + 2]);
+                sums.add(second_moment + n_prof + k, fw[f]);
                 zmin = std::min(zmin, pos[3 * i + 2]);
                 zmax = std::max(zmax, pos[3 * i + 2]);
                 xsum += std::abs(pos[3 * i]);
@@ -133,15 +143,16 @@ namespace YarnImpact
                   {
                     if (broken[i])
                       {
-                        failed += factor * fw[f];
+                        sums.add(failed, factor * fw[f]);
                         fibre_cut[f] = 1.;
                       }
                     else
                       {
                         double l;
                         const double e = truss_strain(x, i, nf, L0, &l);
-                        elastic += 0.5 * truss_k * fw[f] * chains.tw[s] *
-                                   (l - L0) * (l - L0);
+                        sums.add(elastic,
+                                 0.5 * truss_k * fw[f] * chains.tw[s] *
+                                   (l - L0) * (l - L0));
                         smax = std::max(smax, e);
                       }
                   }
@@ -157,7 +168,8 @@ namespace YarnImpact
         // Truss (st_begin - 1, st_begin) belongs to the rank on the left.
 
         // Contacts: the energy twins of the forces (contact_kernels.h),
-        // weighted as the forces and the dissipation.
+        // weighted as the forces, each pair on the rank that owns its lower
+        // sphere (the row of its list).
         for (const ListBlock &B : lists.blocks)
           {
             const std::uint32_t *pstart           = B.pstart.data();
@@ -168,33 +180,33 @@ namespace YarnImpact
             for (std::size_t i = B.b; i < B.e; ++i)
               for (std::uint32_t p = pstart[i - B.b]; p < pstart[i - B.b + 1];
                    ++p)
-                if (pairs[p].w < 0.f)
+                if (pairs[p].w < 0.f && decomposition.owned(i))
                   {
                     const std::size_t j = pairs[p].j;
-                    contact += -pairs[p].w * decomposition.own_factor(i, j) *
-                               pair_contact_energy(fibre_law,
-                                                   d,
-                                                   x + 3 * i,
-                                                   x + 3 * j,
-                                                   1.,
-                                                   1.,
-                                                   &pxi[3 * p]);
+                    sums.add(contact,
+                             -pairs[p].w * pair_contact_energy(fibre_law,
+                                                               d,
+                                                               x + 3 * i,
+                                                               x + 3 * j,
+                                                               1.,
+                                                               1.,
+                                                               &pxi[3 * p]));
                   }
             for (std::size_t p = 0; p < mpairs.size(); ++p)
-              if (mpairs[p].active)
+              if (mpairs[p].active && decomposition.owned(mpairs[p].i))
                 {
                   const std::size_t i = mpairs[p].i, j = mpairs[p].j;
                   const double sx = (mpairs[p].axes & 1) ? -1. : 1.,
                                sz = (mpairs[p].axes & 2) ? -1. : 1.;
-                  contact += mpairs[p].w * (i == j ? 0.5 : 1.) *
-                             decomposition.own_factor(i, j) *
+                  sums.add(contact,
+                           mpairs[p].w * (i == j ? 0.5 : 1.) *
                              pair_contact_energy(fibre_law,
                                                  d,
                                                  x + 3 * i,
                                                  x + 3 * j,
                                                  sx,
                                                  sz,
-                                                 &mxi[3 * p]);
+                                                 &mxi[3 * p]));
                 }
           }
         // Projectile contacts of the last force evaluation (the positions
@@ -211,33 +223,25 @@ namespace YarnImpact
                              ey = pos[3 * i + 1] - contact_at.yc;
                 const double delta =
                   std::max(0., contact_at.Rr - std::sqrt(ex * ex + ey * ey));
-                contact += fw[f] * sw[s] * chains.cw[s] *
-                           law.energy(delta, &xi_p[3 * i]);
+                sums.add(contact,
+                         fw[f] * sw[s] * chains.cw[s] *
+                           law.energy(delta, &xi_p[3 * i]));
               }
         });
 
-        double sums[5] = {kinetic, elastic, contact, dissipated, failed};
+        const std::vector<double> total = sums.sum(comm);
         if (n_ranks > 1)
-          {
-            MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, comm);
-            MPI_Allreduce(MPI_IN_PLACE,
-                          buf.data(),
-                          buf.size(),
-                          MPI_DOUBLE,
-                          MPI_MAX,
-                          comm);
-            MPI_Allreduce(MPI_IN_PLACE,
-                          pz2.data(),
-                          pz2.size(),
-                          MPI_DOUBLE,
-                          MPI_SUM,
-                          comm);
-          }
-        o.kinetic_energy    = factor * sums[0];
-        o.elastic_energy    = factor * sums[1];
-        o.contact_energy    = factor * sums[2];
-        o.dissipated_energy = factor * sums[3];
-        o.n_failed          = static_cast<unsigned long>(sums[4] + 0.5);
+          MPI_Allreduce(MPI_IN_PLACE,
+                        buf.data(),
+                        buf.size(),
+                        MPI_DOUBLE,
+                        MPI_MAX,
+                        comm);
+        o.kinetic_energy    = factor * total[kinetic];
+        o.elastic_energy    = factor * total[elastic];
+        o.contact_energy    = factor * total[contact];
+        o.dissipated_energy = factor * total[dissipated];
+        o.n_failed          = static_cast<unsigned long>(total[failed] + 0.5);
         o.max_strain        = std::max(0., buf[0]);
 
         StationProfile &profile = o.profile;
@@ -250,13 +254,55 @@ namespace YarnImpact
             profile.width[k]         = pwidth[k];
             profile.initial_width[k] = initial_width[k];
             profile.rms_width[k] =
-              4. * std::sqrt(pz2[k] / std::max(pz2[n_prof + k], 1e-300));
+              4. *
+              std::sqrt(total[second_moment + k] /
+                        std::max(total[second_moment + n_prof + k], 1e-300));
           }
         bool all_cut = nf > 0;
         for (unsigned int f = 0; f < nf; ++f)
           all_cut = all_cut && fibre_cut[f] > 0.;
         o.cut_through = all_cut;
         return o;
+      }
+
+
+      std::vector<FibreBreak>
+      gather_fibre_breaks(const FibreChains &chains,
+                          const Decomposition &decomposition,
+                          const Spheres &spheres)
+      {
+        // Three doubles per break (time, fibre, lower station): one array
+        // to exchange.
+        std::vector<double> local;
+        const unsigned int nf = chains.nf;
+        const unsigned int end =
+          std::min(decomposition.st_end, chains.n_st - 1);
+        for (unsigned int s = decomposition.st_begin; s < end; ++s)
+          for (unsigned int f = 0; f < nf; ++f)
+            {
+              const std::size_t i = decomposition.local_index(s, f);
+              if (spheres.broken[i])
+                local.insert(local.end(),
+                             {spheres.break_time[i], double(f), double(s)});
+            }
+        const std::vector<std::vector<double>> all =
+          dealii::Utilities::MPI::all_gather(decomposition.comm, local);
+        std::vector<FibreBreak> breaks;
+        for (const std::vector<double> &r : all)
+          for (std::size_t k = 0; k + 2 < r.size(); k += 3)
+            {
+              FibreBreak b;
+              b.time               = r[k];
+              b.part               = "dem";
+              b.fibre              = static_cast<unsigned int>(r[k + 1]);
+              const unsigned int s = static_cast<unsigned int>(r[k + 2]);
+              b.x                  = 0.5 * (chains.sx0[s] + chains.sx0[s + 1]);
+              b.y                  = chains.fy[b.fibre];
+              b.z                  = chains.fz[b.fibre];
+              breaks.push_back(b);
+            }
+        std::sort(breaks.begin(), breaks.end(), break_less);
+        return breaks;
       }
     } // namespace internal
   }   // namespace DEM

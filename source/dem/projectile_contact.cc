@@ -22,8 +22,7 @@ namespace YarnImpact
                                 const Decomposition &decomposition,
                                 Spheres &spheres,
                                 const double dt,
-                                ProjectileContactState &contact,
-                                double &dissipated)
+                                ProjectileContactState &contact)
       {
         const double *__restrict x          = spheres.pos.data();
         const double *__restrict v          = spheres.vel.data();
@@ -32,7 +31,7 @@ namespace YarnImpact
         std::uint64_t *__restrict proj_step = spheres.proj_step.data();
         const std::uint64_t step_count      = spheres.step_count;
         const unsigned int nf               = chains.nf;
-        double diss_sum                     = dissipated;
+        double *__restrict dissipated       = spheres.dissipated.data();
 
         // Only cross-sections that can reach the projectile; a sphere
         // centre touches it within the projectile's radius plus its own.
@@ -90,11 +89,10 @@ namespace YarnImpact
                   F[3 * i + 1] += w * fc[1];
                   F[3 * i + 2] += w * fc[2];
                   reaction -= w * fc[1];
-                  diss_sum += w * diss;
+                  dissipated[i] += w * diss;
                 }
             }
         });
-        dissipated = diss_sum;
         return reaction;
       }
     } // namespace internal

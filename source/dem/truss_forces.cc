@@ -20,9 +20,10 @@ namespace YarnImpact
                    const double *__restrict x,
                    double *__restrict F,
                    std::uint8_t *__restrict broken,
-                   double &dissipated)
+                   const double time,
+                   double *__restrict break_time,
+                   double *__restrict dissipated)
       {
-        double diss              = dissipated;
         const unsigned int nf    = chains.nf;
         const double L0          = chains.L0;
         const unsigned int first = decomposition.st_begin;
@@ -47,9 +48,10 @@ namespace YarnImpact
                 const double strain = truss_force(e, k, L0, t);
                 if (failure && strain > failure_strain)
                   {
-                    broken[i] = 1;
-                    diss += decomposition.own_factor(i, j) * 0.5 * k * strain *
-                            strain * L0 * L0;
+                    broken[i]     = 1;
+                    break_time[i] = time;
+                    if (decomposition.owned(i))
+                      dissipated[i] += 0.5 * k * strain * strain * L0 * L0;
                     continue;
                   }
                 F[3 * i] += t[0];
@@ -60,7 +62,6 @@ namespace YarnImpact
                 F[3 * j + 2] -= t[2];
               }
           }
-        dissipated = diss;
       }
     } // namespace internal
   }   // namespace DEM

@@ -140,11 +140,22 @@ done
 # checkpoint at every row besides (a tiny wall-clock interval, decided on
 # rank 0): the slots alternate many times, and writing checkpoints changes
 # nothing in the run.
+# Trusses break from 0.21 us on (Failure strain 1 %), before and after the
+# stop at 0.23 us: their break times (breaks_dem.csv) must come back too.
+breaking() { printf 'subsection Yarn\n  set Failure strain = 0.01\nend\n'; }
 for n in 1 2; do
-  dem_prm "ref_dem$n" 0 > "ref_dem$n.prm"
+  { dem_prm "ref_dem$n" 0; breaking; } > "ref_dem$n.prm"
   run $n "ref_dem$n.prm"
   [ "$rc" -eq 0 ] || fail "dem reference on $n ranks: exit $rc: $(head -c 300 stderr)"
-  dem_prm "dem$n" 0 > "dem$n.prm"
+  awk -F, 'NR > 1 && $1 < 0.23 {b = 1} NR > 1 && $1 > 0.23 {a = 1} END {exit !(a && b)}' "ref_dem$n/breaks_dem.csv" ||
+    fail "dem reference on $n ranks: no truss broken before and after the stop (the case no longer tests restarts through breaks)"
+  # Every failed element of the history is listed, once (half symmetry:
+  # the history counts the whole yarn, twice the modelled half).
+  listed=$(($(wc -l < "ref_dem$n/breaks_dem.csv") - 1))
+  failed=$(tail -1 "ref_dem$n/history_dem.csv" | cut -d, -f15)
+  [ $((2 * listed)) -eq "$failed" ] ||
+    fail "dem reference on $n ranks: breaks_dem.csv lists $listed broken trusses, the history $failed failed elements (the whole yarn)"
+  { dem_prm "dem$n" 0; breaking; } > "dem$n.prm"
   if [ $n -eq 2 ]; then
     printf 'subsection Output\n  set Checkpoint wall-clock interval = 1e-9\nend\n' >> "dem$n.prm"
   fi
@@ -155,7 +166,7 @@ for n in 1 2; do
   fi
   run $n --restart "dem$n.prm"
   [ "$rc" -eq 0 ] || fail "dem restart on $n ranks: exit $rc: $(head -c 300 stderr)"
-  same "dem restart on $n ranks" "ref_dem$n" "dem$n" history_dem.csv
+  same "dem restart on $n ranks" "ref_dem$n" "dem$n" history_dem.csv breaks_dem.csv
 done
 
 # --- Model = both, stopped in its DEM part: the FE part is not run again,

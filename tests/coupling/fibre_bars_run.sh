@@ -11,9 +11,8 @@
 #   0.05 % of the initial energy (the projectile's deceleration is the DEM
 #   part's until the bars' waves come back, checked by hybrid_run.sh);
 # - the same history on 1, 2 and 3 MPI ranks (each rank steps its own
-#   fibres' bars, the sums over fibres are in fibre order): byte for byte
-#   but the energy columns, which the DEM part sums rank by rank (within
-#   1e-9 of the initial energy);
+#   fibres' bars, the sums over fibres are in fibre order, the DEM part's
+#   sums are reproducible): byte for byte;
 # - stopped by SIGTERM at a history row and continued with --restart: the
 #   same history, byte for byte (the bars' checkpoint);
 # - bad set-ups refused by --check with one line naming the parameter.

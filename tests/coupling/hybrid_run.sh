@@ -8,9 +8,8 @@
 #   largest energy balance error, coupling included, at most 0.05 % of the
 #   initial energy;
 # - the same history on 1, 2 and 3 MPI ranks (3 is more than a 2-core
-#   machine has: oversubscribed): byte for byte but the energy columns,
-#   which the DEM part sums rank by rank as Model = dem does (within 1e-9
-#   of the initial energy; the motion is the same to the last bit);
+#   machine has: oversubscribed), byte for byte, energies included (the
+#   DEM part's sums are reproducible sums);
 # - stopped by SIGTERM at a history row and continued with --restart: the
 #   same history as the uninterrupted run, byte for byte;
 # - with a DEM part at the clamp: the energy balance, the projectile's

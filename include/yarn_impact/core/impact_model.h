@@ -7,6 +7,7 @@
 #include <functional>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace YarnImpact
 {
@@ -166,6 +167,22 @@ namespace YarnImpact
      * model needs it, e.g. to refresh ghost values). */
     virtual void
     load_state(Checkpoint::Reader &in) = 0;
+
+    /** Whether the model records its fibre breaks (fibre_breaks()); the
+     * run then writes them to `breaks_<name>.csv`. */
+    virtual bool
+    records_fibre_breaks() const
+    {
+      return false;
+    }
+
+    /** Every fibre break so far, in the order of break_less(), the same on
+     * every rank (collective). Only called if records_fibre_breaks(). */
+    virtual std::vector<FibreBreak>
+    fibre_breaks() const
+    {
+      return {};
+    }
 
     /** Model-specific remarks for the run summary (e.g. how the DEM's MPI
      * ghost layers grew); empty by default. Must be identical on all

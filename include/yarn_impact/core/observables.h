@@ -78,6 +78,38 @@ namespace YarnImpact
    * the symmetry. Nothing here is measured by analysis: the fronts are
    * measured on @p profile by the layer above (HistoryRow::fronts).
    */
+  /**
+   * One fibre break of a model that follows its fibres one by one (a DEM
+   * truss, a fibre bar of the hybrid's far field): when, which fibre, and
+   * where along the yarn, so that one can see whether a part of size a
+   * holds the breaks (doc/user-guide.md, "Fibre breaks").
+   */
+  struct FibreBreak
+  {
+    /** Time of the step at which it broke [s]. */
+    double time = 0.;
+    /** The part that broke: "dem" or "bars". */
+    const char *part = "dem";
+    /** Fibre index in the model's fibre layout [-]. */
+    unsigned int fibre = 0;
+    /** Reference (initial) x of the broken element's mid-point, from the
+     * impact point [m]; the fibre's reference y and z in the section [m]. */
+    double x = 0., y = 0., z = 0.;
+  };
+
+
+  /** Order of fibre breaks in their file: by time, then x, then fibre. */
+  inline bool
+  break_less(const FibreBreak &a, const FibreBreak &b)
+  {
+    if (a.time != b.time)
+      return a.time < b.time;
+    if (a.x != b.x)
+      return a.x < b.x;
+    return a.fibre < b.fibre;
+  }
+
+
   struct Observables
   {
     /** Kinetic energy of the yarn [J]. */

@@ -148,6 +148,12 @@ namespace YarnImpact
       std::vector<unsigned long>
       broken_per_millimetre() const;
 
+      /** Every broken bar: its break time, fibre and the reference x of
+       * its middle, in the order of break_less() (part "bars"; the same on
+       * every rank; collective). */
+      std::vector<FibreBreak>
+      fibre_breaks(const MPI_Comm communicator) const;
+
       /** Whether fibre @p f has a broken bar. */
       bool
       fibre_broken(const unsigned int f) const;
@@ -258,6 +264,10 @@ namespace YarnImpact
       std::vector<double> node_state, node_force;
       /** Broken bars, by index(f, k) of their first node. */
       std::vector<std::uint8_t> broken;
+      /** When each broken bar of the own fibres broke [s]. */
+      std::vector<double> break_time;
+      /** Time of the displacements: the sum of the drifts' steps [s]. */
+      double time = 0.;
       /** Bar length h_b [m], stiffness E_f A_f / h_b [N/m], failure strain
        * [-] and whether bars break. */
       double h = 0., stiffness = 0., failure_strain = 0.;

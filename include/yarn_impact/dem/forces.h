@@ -23,7 +23,8 @@ namespace YarnImpact
        * the positions @p x [m], added to @p F [N]. With @p failure, a truss
        * strained beyond @p failure_strain [-] breaks (its flag in
        * @p broken) and its elastic energy is added to @p dissipated [J]
-       * (the rank's share).
+       * (one value per sphere) of the truss's owned sphere at the lower
+       * station, and @p time [s] to its @p break_time.
        */
       void
       truss_forces(const FibreChains &chains,
@@ -33,14 +34,17 @@ namespace YarnImpact
                    const double *__restrict x,
                    double *__restrict F,
                    std::uint8_t *__restrict broken,
-                   double &dissipated);
+                   const double time,
+                   double *__restrict break_time,
+                   double *__restrict dissipated);
 
       /**
        * The fibre-fibre contact forces of the listed pairs of @p blocks by
        * @p law over the step @p dt [s] on positions @p x [m] and velocities
        * @p v [m/s], added to @p F [N]; the pairs' contact flags and
-       * tangential histories are updated, the energy dissipated (the rank's
-       * share) is added to @p dissipated [J].
+       * tangential histories are updated, the energy dissipated by the
+       * pairs of a row is added to @p dissipated [J] (one value per sphere)
+       * of the row's sphere, if owned.
        */
       void
       fibre_contact_forces(std::vector<ListBlock> &blocks,
@@ -51,13 +55,14 @@ namespace YarnImpact
                            const double *__restrict v,
                            double *__restrict F,
                            const double dt,
-                           double &dissipated);
+                           double *__restrict dissipated);
 
       /**
        * The contact forces of the mirror pairs of @p blocks (a sphere with
        * the image of another one, or of itself, in a symmetry plane), as
        * fibre_contact_forces(): i feels the force, j its mirror image
-       * (nothing more for a self-image pair).
+       * (nothing more for a self-image pair); the dissipated energy goes to
+       * the lower sphere, i, if owned.
        */
       void
       mirror_contact_forces(std::vector<ListBlock> &blocks,
@@ -68,14 +73,15 @@ namespace YarnImpact
                             const double *__restrict v,
                             double *__restrict F,
                             const double dt,
-                            double &dissipated);
+                            double *__restrict dissipated);
 
       /**
        * The contact forces of the rigid cylindrical @p projectile on the
        * owned spheres of the cross-sections that can reach it, by the law
        * @p law_type built from @p constants, over the step @p dt [s], added to
        * the forces of @p spheres [N]; the energy dissipated is added to
-       * @p dissipated [J] and the contact geometry stored in @p contact.
+       * each sphere's `dissipated` [J] and the contact geometry stored in
+       * @p contact.
        * The law is chosen once per call, not per sphere.
        * @return the reaction (y-force on the projectile) of this rank's
        * modelled part [N]
@@ -88,8 +94,7 @@ namespace YarnImpact
                                 const Decomposition &decomposition,
                                 Spheres &spheres,
                                 const double dt,
-                                ProjectileContactState &contact,
-                                double &dissipated);
+                                ProjectileContactState &contact);
     } // namespace internal
   }   // namespace DEM
 } // namespace YarnImpact

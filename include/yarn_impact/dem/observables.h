@@ -27,6 +27,16 @@ namespace YarnImpact
        * wave fronts). Reads the model's parts
        * given at construction; every call is collective.
        */
+      /** Every broken truss of the model, its break time and where it
+       * lies (the mid-point of its reference stations), gathered from the
+       * ranks that own its lower sphere and sorted by break_less(): the
+       * same on every rank (collective). */
+      std::vector<FibreBreak>
+      gather_fibre_breaks(const FibreChains &chains,
+                          const Decomposition &decomposition,
+                          const Spheres &spheres);
+
+
       class ObservablesMeter
       {
       public:
@@ -48,13 +58,15 @@ namespace YarnImpact
 
         /**
          * The observables now; the projectile contacts are those of the
-         * last force evaluation, at @p contact, @p dissipated [J] is this
-         * rank's dissipated energy so far. The yarn is cut through when
-         * every fibre has a failed truss.
+         * last force evaluation, at @p contact. The yarn is cut through when
+         * every fibre has a failed truss. Every sum over the spheres (the
+         * energies, the failed trusses, the section's second moments) is a
+         * ReproducibleSum with each term counted on one rank (a pair on the
+         * rank that owns its lower sphere), so that the observables are the
+         * same, bit for bit, on any number of ranks.
          */
         Observables
-        measure(const ProjectileContactState &contact,
-                const double dissipated) const;
+        measure(const ProjectileContactState &contact) const;
 
       private:
         const FibreChains &chains;

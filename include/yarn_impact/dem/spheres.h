@@ -29,6 +29,19 @@ namespace YarnImpact
          * and the force evaluation at which that contact was last active. */
         std::vector<double> xi_p;
         std::vector<std::uint64_t> proj_step;
+        /** Energy dissipated so far [J] by the contacts and trusses that
+         * sphere i heads (set for owned spheres only): a pair's by its lower
+         * sphere (the row of its list), a truss's by its sphere at the lower
+         * station, a projectile contact's by its sphere. Each rank adds to
+         * its own spheres in the order of the forces, so every sphere's sum,
+         * and their reproducible total, are the same on any number of
+         * ranks. */
+        std::vector<double> dissipated;
+        /** Time at which the truss to the same fibre's sphere at the next
+         * station broke [s] (where `broken`). */
+        std::vector<double> break_time;
+        /** Time of the positions: the sum of the drifts' steps [s]. */
+        double time = 0.;
         /** Per station of the model (owned ones set): x-range and highest y
          * of its spheres after the last drift [m]. */
         std::vector<double> st_xlo, st_xhi, st_ymax;
