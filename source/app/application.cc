@@ -80,7 +80,6 @@ namespace YarnImpact
     Parameters::Shared::declare_parameters(prm);
     Analysis::Parameters::declare_parameters(prm);
     ModelRegistry::declare_parameters(prm);
-    DEM::ElementaryTestParameters::declare_parameters(prm);
   }
 
   void
@@ -96,20 +95,26 @@ namespace YarnImpact
         plugin->parse_parameters(prm);
         models.emplace(name, std::move(plugin));
       }
-    dem.parse_parameters(prm);
-    elementary.parse_parameters(prm);
-    Parameters::require(elementary.loading == DEM::ElementaryLoading::none ||
-                          model == "dem",
-                        "Elementary test/Loading",
-                        "is a loading of the DEM model: it needs Model = dem");
+    // A model's own task (the DEM's elementary tests) runs that model
+    // alone.
+    for (const auto &[name, plugin] : models)
+      if (const auto task = plugin->own_task())
+        Parameters::require(model == name,
+                            task->parameter,
+                            "asks for the " + task->description + " of the " +
+                              name + " model: it needs Model = " + name);
     // Every set-up check that needs no MPI ranks is made here, so that
     // `--check` refuses what the run would, and a run refuses before it
     // writes anything (with Model = both, before the FE part runs).
-    if (elementary.loading != DEM::ElementaryLoading::none)
-      DEM::validate(shared, dem, true);
-    else
-      for (const std::string &name : run_models())
-        models.at(name)->validate(shared);
+    for (const std::string &name : run_models())
+      models.at(name)->validate(shared);
+  }
+
+  std::optional<ModelPlugin::OwnTask>
+  AllParameters::own_task() const
+  {
+    const auto plugin = models.find(model);
+    return plugin == models.end() ? std::nullopt : plugin->second->own_task();
   }
 
   AllParameters
@@ -258,10 +263,11 @@ namespace YarnImpact
         prm.print_parameters(resolved, ParameterHandler::ShortPRM);
         if (restart)
           {
-            if (parameters.elementary.loading != DEM::ElementaryLoading::none)
-              throw InputError("--restart: the elementary tests (Elementary "
-                               "test/Loading) write no checkpoints; run them "
-                               "again from the start.");
+            if (const auto task = parameters.own_task())
+              throw InputError("--restart: the " + task->description + " (" +
+                               task->parameter +
+                               ") write no checkpoints; run them again from "
+                               "the start.");
             internal::check_restart(parameters, resolved.str(), lock);
           }
         else
@@ -281,16 +287,14 @@ namespace YarnImpact
         // an impact run with a checkpoint (exit code 6).
         Checkpoint::install_signal_handlers();
 
-        if (parameters.elementary.loading != DEM::ElementaryLoading::none)
+        if (parameters.own_task())
           {
             bool passed = false;
             try
               {
-                passed = DEM::run_elementary_test(parameters.shared,
-                                                  parameters.dem,
-                                                  parameters.elementary,
-                                                  MPI_COMM_WORLD,
-                                                  out);
+                passed =
+                  parameters.models.at(parameters.model)
+                    ->run_own_task(parameters.shared, MPI_COMM_WORLD, out);
               }
             catch (const Interrupted &e)
               {

@@ -5,6 +5,16 @@
 
 namespace YarnImpact
 {
+  bool
+  ModelPlugin::run_own_task(const Parameters::Shared &,
+                            const MPI_Comm,
+                            std::ostream &) const
+  {
+    throw std::logic_error("run_own_task() of a model without a task of its "
+                           "own");
+  }
+
+
   namespace ModelRegistry
   {
     namespace
@@ -12,6 +22,7 @@ namespace YarnImpact
       /** A registered model. */
       struct Entry
       {
+        std::string help;
         DeclareFunction declare;
         MakeFunction make;
       };
@@ -30,10 +41,11 @@ namespace YarnImpact
 
     bool
     add(const std::string &name,
+        const std::string &help,
         const DeclareFunction declare,
         const MakeFunction make)
     {
-      if (!registry().emplace(name, Entry{declare, make}).second)
+      if (!registry().emplace(name, Entry{help, declare, make}).second)
         throw std::logic_error("the model '" + name + "' is registered twice");
       return true;
     }
@@ -46,6 +58,16 @@ namespace YarnImpact
       for (const auto &entry : registry())
         result.push_back(entry.first);
       return result;
+    }
+
+
+    std::string
+    help(const std::string &name)
+    {
+      const auto entry = registry().find(name);
+      if (entry == registry().end())
+        throw std::logic_error("no model '" + name + "' is registered");
+      return entry->second.help;
     }
 
 

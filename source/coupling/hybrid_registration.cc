@@ -16,6 +16,15 @@ namespace YarnImpact
       class Plugin : public ModelPlugin
       {
       public:
+        /** What the model is, for the help of `Model`. */
+        static std::string
+        help()
+        {
+          return "the hybrid yarn (subsection Hybrid, doc/hybrid.md): the DEM "
+                 "fibres near the impact, the FE continuum elsewhere, "
+                 "coupled in an overlap";
+        }
+
         /** Subsection `Hybrid`; the parts' own subsections are declared by
          * their models' registrations. */
         static void

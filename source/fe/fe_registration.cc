@@ -15,6 +15,13 @@ namespace YarnImpact
       class Plugin : public ModelPlugin
       {
       public:
+        /** What the model is, for the help of `Model`. */
+        static std::string
+        help()
+        {
+          return "the mesoscopic finite-element yarn";
+        }
+
         /** Subsection `FE` and the FE's failure entries of `Yarn`. */
         static void
         declare_parameters(dealii::ParameterHandler &prm)

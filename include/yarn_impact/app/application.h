@@ -5,12 +5,11 @@
 #include <yarn_impact/app/model_factory.h>
 #include <yarn_impact/core/model_registry.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/dem/elementary/elementary_test.h>
-#include <yarn_impact/dem/parameters.h>
 
 #include <iosfwd>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,11 +32,12 @@ namespace YarnImpact
      * (ModelRegistry); each parses its own, whichever model runs, so that
      * a bad entry is refused whatever `Model` says. */
     std::map<std::string, std::shared_ptr<ModelPlugin>> models;
-    /** The DEM's parameters and the elementary test's: an elementary test
-     * (`Model = dem`, `Elementary test/Loading` not none) drives a periodic
-     * segment, not an impact model, so it is run by the application. */
-    DEM::Parameters dem;
-    DEM::ElementaryTestParameters elementary;
+
+    /** The chosen model's task of its own, if its parameters ask for one
+     * (ModelPlugin::own_task(): the DEM's elementary tests) instead of an
+     * impact run. */
+    std::optional<ModelPlugin::OwnTask>
+    own_task() const;
 
     /** The models a run drives, in order (model_names()). */
     std::vector<std::string>

@@ -7,7 +7,9 @@
 
 #include <mpi.h>
 
+#include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,21 @@ namespace YarnImpact
   class ModelPlugin
   {
   public:
+    /**
+     * A task of a model's own that its parameters can ask for instead of
+     * an impact run (the DEM's elementary tests): it writes into
+     * `Output/Directory` but no checkpoints.
+     */
+    struct OwnTask
+    {
+      /** Short name, for the memory line ("elementary"). */
+      std::string name;
+      /** What it is, in the plural, for messages ("elementary tests"). */
+      std::string description;
+      /** The entry that asks for it ("Elementary test/Loading"). */
+      std::string parameter;
+    };
+
     virtual ~ModelPlugin() = default;
 
     /** Parse the model's parameters (declared by its registration). */
@@ -49,6 +66,23 @@ namespace YarnImpact
     virtual std::unique_ptr<ImpactModel>
     create(const Parameters::Shared &shared,
            const MPI_Comm communicator) const = 0;
+
+    /** The task of the model's own that the parsed parameters ask for, if
+     * any (then validate() and memory_estimate() are the task's, and the
+     * run is run_own_task(), not an impact); none by default. */
+    virtual std::optional<OwnTask>
+    own_task() const
+    {
+      return std::nullopt;
+    }
+
+    /** Run the task of own_task() on @p communicator (collective), its
+     * report to @p out; @return whether its checks passed. Throws
+     * Interrupted when a signal stops it. */
+    virtual bool
+    run_own_task(const Parameters::Shared &shared,
+                 const MPI_Comm communicator,
+                 std::ostream &out) const;
   };
 
 
@@ -61,17 +95,23 @@ namespace YarnImpact
     /** Makes a plugin with default parameters. */
     using MakeFunction = std::unique_ptr<ModelPlugin> (*)();
 
-    /** Register the model @p name (its value of `Model`); @return true, to
+    /** Register the model @p name (its value of `Model`), with @p help, what
+     * it is in a few words for the help of `Model`; @return true, to
      * initialise a static. A name registered twice is a programming error
      * (std::logic_error). */
     bool
     add(const std::string &name,
+        const std::string &help,
         const DeclareFunction declare,
         const MakeFunction make);
 
     /** The registered names, sorted. */
     std::vector<std::string>
     names();
+
+    /** What the model @p name is, as registered. */
+    std::string
+    help(const std::string &name);
 
     /** Declare the parameters of every registered model. */
     void
@@ -86,9 +126,10 @@ namespace YarnImpact
 
 /**
  * Register @p Plugin, a ModelPlugin with a static
- * `declare_parameters(dealii::ParameterHandler &)`, as the model @p name
- * (a string literal: its value of the entry `Model`). Once per model, in a
- * source file of its folder.
+ * `declare_parameters(dealii::ParameterHandler &)` and a static
+ * `std::string help()` (what it is, in a few words, for the help of the
+ * entry `Model`), as the model @p name (a string literal: its value of the
+ * entry `Model`). Once per model, in a source file of its folder.
  */
 #define YARN_IMPACT_REGISTER_MODEL(name, Plugin)             \
   namespace                                                  \
@@ -96,6 +137,7 @@ namespace YarnImpact
     const bool yarn_impact_model_registered =                \
       ::YarnImpact::ModelRegistry::add(                      \
         name,                                                \
+        Plugin::help(),                                      \
         &Plugin::declare_parameters,                         \
         []() -> std::unique_ptr<::YarnImpact::ModelPlugin> { \
           return std::make_unique<Plugin>();                 \
