@@ -39,8 +39,9 @@ namespace YarnImpact
 
     /**
      * Whether @p name is one of the files a run writes into Output/Directory
-     * (parameters, summary, history, snapshots of either model, the model
-     * comparison and its plots, elementary-test curves). Only these are
+     * (parameters, summary, history, fibre breaks, snapshots of any model
+     * (the hybrid's multiblock `.vtm` too), the model comparison and its
+     * plots, elementary-test curves). Only these are
      * taken as an earlier run's output, and only these are removed with
      * Output/Overwrite: a user's own files in the directory are left alone.
      */
@@ -60,10 +61,11 @@ namespace YarnImpact
              name == "comparison.csv" || name == "velocity_comparison.png" ||
              name == "wave_fronts.png" ||
              (starts("history_") && ends(".csv")) ||
+             (starts("breaks_") && ends(".csv")) ||
              (starts("checkpoint_") && (ends(".txt") || ends(".bin"))) ||
              (starts("elementary_") &&
               (ends(".csv") || ends(".csv.partial"))) ||
-             ends(".pvd") || ends(".pvtu") || ends(".vtu") ||
+             ends(".pvd") || ends(".pvtu") || ends(".vtu") || ends(".vtm") ||
              // A write that was interrupted (AtomicFile's temporary name).
              (ends(".tmp") && is_run_output(name.substr(0, name.size() - 4)));
     }

@@ -190,6 +190,11 @@ namespace YarnImpact
         const std::string clamp_record =
           clamp_model ? clamp_model->write_snapshot(directory, index, time)
                       : std::string();
+        std::string bars_record;
+        if (layout.fibre_bars)
+          collective_output(communicator, [&] {
+            bars_record = bars.write_snapshot(directory, index);
+          });
         std::ostringstream name;
         name << "hybrid_" << std::setw(4) << std::setfill('0') << index
              << ".vtm";
@@ -211,6 +216,12 @@ namespace YarnImpact
                                   "file=\"" +
                                     clamp_record + "\"/>\n"
                                 : std::string())
+                << (layout.fibre_bars ? "    <DataSet index=\"" +
+                                          std::to_string(clamp_model ? 3 : 2) +
+                                          "\" name=\"bars\" "
+                                          "file=\"" +
+                                          bars_record + "\"/>\n"
+                                      : std::string())
                 << "  </vtkMultiBlockDataSet>\n"
                 << "</VTKFile>\n";
               vtm.commit();

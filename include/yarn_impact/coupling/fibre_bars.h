@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -199,6 +200,20 @@ namespace YarnImpact
       /** Memory of the bars on one rank [bytes]. */
       std::size_t
       memory_consumption() const;
+
+      /**
+       * Write a snapshot of the bars: `<directory>/bars_NNNN.pvtu` (NNNN =
+       * @p snapshot) with one `.vtu` piece per rank, its own fibres as
+       * polylines of bar nodes at their positions (the axial displacement
+       * their own, the transverse the continuum's at the last
+       * compute_forces()). Point data: fibre_id, displacement [m],
+       * axial_velocity [m/s]; cell data per bar: strain [-], force (its
+       * tension) [N], broken. Collective.
+       * @return the file name of the record, relative to @p directory
+       */
+      std::string
+      write_snapshot(const std::string &directory,
+                     const unsigned int snapshot) const;
 
     private:
       MPI_Comm communicator = MPI_COMM_SELF;

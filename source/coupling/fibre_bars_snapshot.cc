@@ -1,0 +1,103 @@
+// The VTU snapshots of the fibre bars of the hybrid's far field: each rank
+// writes its own fibres as one piece, rank 0 the record (the DEM's writer,
+// dem/vtu_writer.h: points joined by line cells).
+
+#include <yarn_impact/coupling/fibre_bars.h>
+#include <yarn_impact/dem/vtu_writer.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <cstdint>
+#include <iomanip>
+#include <sstream>
+
+namespace YarnImpact
+{
+  namespace Coupling
+  {
+    std::string
+    FibreBars::write_snapshot(const std::string &directory,
+                              const unsigned int snapshot) const
+    {
+      namespace VTU = DEM::VTU;
+      const unsigned int rank =
+        dealii::Utilities::MPI::this_mpi_process(communicator);
+      const unsigned int n_ranks =
+        dealii::Utilities::MPI::n_mpi_processes(communicator);
+      std::vector<float> points;
+      std::vector<std::int32_t> lines;
+      std::vector<VTU::Array> pd(3), cd(3);
+      pd[0]              = {"fibre_id", "Int32", 1, {}};
+      pd[1]              = {"displacement", "Float32", 3, {}};
+      pd[2]              = {"axial_velocity", "Float32", 1, {}};
+      cd[0]              = {"strain", "Float32", 1, {}};
+      cd[1]              = {"force", "Float32", 1, {}};
+      cd[2]              = {"broken", "UInt8", 1, {}};
+      std::int32_t first = 0;
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        {
+          const auto &vertex = fibre_vertices[f];
+          const auto &value  = fibre_values[f];
+          // The fibre's transverse displacement at a node layer.
+          const auto transverse = [&](const unsigned int k,
+                                      const unsigned int d) {
+            double s = 0.;
+            for (unsigned int v = 0; v < 4; ++v)
+              s += value[v] * node_state[3 * (k * n_vertices + vertex[v]) + d];
+            return s;
+          };
+          for (unsigned int j = 0; j < n_nodes; ++j)
+            {
+              double xi;
+              const unsigned int c = cell_of(j, xi);
+              const double u[3]    = {displacement[index(f, j)],
+                                      (1. - xi) * transverse(c, 0) +
+                                        xi * transverse(c + 1, 0),
+                                      (1. - xi) * transverse(c, 1) +
+                                        xi * transverse(c + 1, 1)};
+              const double X[3]    = {node_x(j), fibre_y[f], fibre_z[f]};
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  points.push_back(static_cast<float>(X[d] + u[d]));
+                  pd[1].push(u[d]);
+                }
+              pd[0].push(f);
+              pd[2].push(velocity[index(f, j)]);
+              if (j + 1 < n_nodes)
+                {
+                  lines.push_back(first + static_cast<std::int32_t>(j));
+                  lines.push_back(first + static_cast<std::int32_t>(j + 1));
+                  const bool gone = broken[index(f, j)];
+                  const double e  = gone ? 0. : strain[index(f, j)];
+                  const unsigned int c_bar =
+                    std::min(j / bars_per_cell, n_layers - 2);
+                  cd[0].push(e);
+                  cd[1].push(cell_weight[c_bar] * stiffness * e * h);
+                  cd[2].push(static_cast<unsigned int>(gone));
+                }
+            }
+          first += static_cast<std::int32_t>(n_nodes);
+        }
+      std::ostringstream base;
+      base << "bars_" << std::setw(4) << std::setfill('0') << snapshot;
+      VTU::write_piece(directory + "/" + base.str() + "_r" +
+                         std::to_string(rank) + ".vtu",
+                       points,
+                       lines,
+                       pd,
+                       cd);
+      if (rank == 0)
+        {
+          std::vector<std::string> pieces;
+          for (unsigned int q = 0; q < n_ranks; ++q)
+            pieces.push_back(base.str() + "_r" + std::to_string(q) + ".vtu");
+          VTU::write_record(directory + "/" + base.str() + ".pvtu",
+                            pieces,
+                            pd,
+                            cd);
+        }
+      MPI_Barrier(communicator);
+      return base.str() + ".pvtu";
+    }
+  } // namespace Coupling
+} // namespace YarnImpact
