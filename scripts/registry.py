@@ -25,6 +25,8 @@ and the quantities that the extractor KIND reads from the run's outputs:
   consistency LOG         the model consistency lines of a Model = both run
   recovery LOG            the relative errors printed by identify_charmetant.py
                           --expect (test identification/synthetic_recovery)
+  segment_length LOG      the differences printed by the test
+                          dem/elementary_segment_length
 
   registry.py show NAME   prints an entry
 """
@@ -110,6 +112,14 @@ def extract_history(run):
         if time <= t[-1] + 1e-9:
             k = min(range(len(t)), key=lambda i: abs(t[i] - time))
             q["v_%gus" % time] = v[k]
+    if "max longitudinal strain [-]" in h:
+        for time in (10, 20):
+            if time <= t[-1] + 1e-9:
+                k = min(range(len(t)), key=lambda i: abs(t[i] - time))
+                q["strain_max_%gus_pct" % time] = (
+                    100. * h["max longitudinal strain [-]"][k])
+    if "section RMS width at impact [mm]" in h:
+        q["rms_width_0_mm"] = h["section RMS width at impact [mm]"][0]
     q["end_us"] = t[-1]
     q["v_end"] = v[-1]
     first = s.get("first_failure")
@@ -120,6 +130,13 @@ def extract_history(run):
     eroded = s.get("eroded_cells")
     if eroded is not None:
         q["eroded_cells"] = eroded
+        # "eroded cells: 20 (first at 19.6002 us)": the whole cell text
+        # with the time rounded, "none" without erosion
+        text = next(line.split(":", 1)[1].strip() for line in open(summary)
+                    if line.strip().startswith("eroded cells"))
+        m = re.search(r"first at ([\d.]+) us", text)
+        q["eroded_text"] = ("%d (first at %.2f us)" % (eroded, float(m.group(1)))
+                            if m else text)
     w = [x for ti, x in zip(t, h["section width at impact [mm]"])
          if ti <= 20.0 + 1e-6]
     change = [100. * (x / w[0] - 1.) for x in w]
@@ -143,6 +160,7 @@ def extract_failure(run, dem_csv):
     dem = read_csv(dem_csv)
     t_d, v_d = dem["t [us]"], dem["projectile velocity [m/s]"]
     best, at = -1.0, None
+    dvs = []
     for ti, vi in zip(fe["t [us]"], fe["projectile velocity [m/s]"]):
         if ti > t_d[-1] + 1e-9:
             break
@@ -151,9 +169,22 @@ def extract_failure(run, dem_csv):
             if ti > t_d[0] else 1
         a = (ti - t_d[k - 1]) / (t_d[k] - t_d[k - 1])
         d = abs(vi - (v_d[k - 1] + a * (v_d[k] - v_d[k - 1])))
+        dvs.append((ti, d))
         if d > best:
             best, at = d, ti
     q["dv_max"], q["dv_max_at_us"] = best, at
+    # The DEM reference: its first break (the first row with a broken
+    # truss) and the end of its history; the FE against it.
+    k1 = next(i for i, f in enumerate(dem["failed elements"]) if f > 0)
+    q["dem_first_break_us"] = t_d[k1]
+    q["dem_end_us"] = t_d[-1]
+    if isinstance(q["first_failure_us"], float):
+        q["first_failure_vs_dem_us"] = q["first_failure_us"] - t_d[k1]
+    q["dv_at_dem_end"] = dvs[-1][1]
+    above = [ti for ti, d in dvs if d > 2.0]
+    later = [ti for ti, d in dvs if above and ti > above[-1]]
+    if later:
+        q["dv_below_2_from_us"] = later[0]
     return q
 
 
@@ -255,6 +286,12 @@ def extract_compare(log):
         if m:
             q[slug(m.group(1)) + ".dv_max"] = float(m.group(3))
             q[slug(m.group(1)) + ".dv_max_until_us"] = float(m.group(2))
+            w = re.search(r"largest width / initial ([\d.]+) \(DEM ([\d.]+)\)",
+                          line)
+            if w:
+                q[slug(m.group(1)) + ".width_max"] = float(w.group(1))
+                q["dem.width_max_until_%gus" % float(m.group(2))] = float(
+                    w.group(2))
     return q
 
 
@@ -300,7 +337,24 @@ def extract_recovery(log):
             "constants_checked": len(errors)}
 
 
+def extract_segment_length(log):
+    """tests/dem/elementary_segment_length.sh: the largest difference of
+    each column between 3 and 7 cross-sections over its scale."""
+    q = {}
+    for line in lines_of(log):
+        m = re.match(r"(\w+)\s+largest difference (\S+) \(scale (\S+)\)",
+                     line)
+        if m:
+            q[m.group(1) + "_rel"] = float(m.group(2)) / float(m.group(3))
+    if not q:
+        raise SystemExit("registry.py: no differences in " + log)
+    q["stress_rel_max"] = max(v for k, v in q.items()
+                              if k.startswith("tau_"))
+    return q
+
+
 EXTRACTORS = {
+    "segment_length": extract_segment_length,
     "history": extract_history, "failure": extract_failure,
     "summary": extract_summary, "elementary": extract_elementary,
     "fibre_failure": extract_fibre_failure, "compare": extract_compare,

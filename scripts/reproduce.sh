@@ -17,6 +17,9 @@
 # non-zero at the end. Run from a clean tree: the entry records whether it
 # was dirty, and fill_docs.py shows such an entry's numbers as stale.
 set -uo pipefail
+# All of it in one function, read whole before it runs: an edit of this
+# file during a run does not change the run.
+main() {
 cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
@@ -77,6 +80,10 @@ add fibre_failure_identification quick \
 add synthetic_recovery quick "$CODE scripts/identify_charmetant.py tests/identification" \
   "recovery:$out/synthetic_recovery.log" \
   "bash tests/identification/synthetic_recovery.sh $build/tests/identification/charmetant_curves \$PWD/scripts"
+# doc/identification.md section 2.1: test dem/elementary_segment_length.
+add segment_length quick "$CODE tests/dem/elementary_segment_length.sh tests/dem/elementary_distortion.prm" \
+  "segment_length:$out/segment_length.log" \
+  "bash tests/dem/elementary_segment_length.sh \$(readlink -f $exe) \$PWD/tests/dem"
 # doc/identification.md section 4.1: the DEM tension test to failure.
 add dem_tension quick "$CODE" "elementary:$out/dem_tension.log" \
   "$(one_run dem_tension prm/elementary/tension.prm)"
@@ -204,3 +211,6 @@ if [ ${#failed[@]} -gt 0 ]; then
   exit 1
 fi
 echo "now: /usr/bin/python3 scripts/fill_docs.py   (writes the numbers into the docs)"
+}
+main "$@"
+exit $?
