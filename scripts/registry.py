@@ -11,10 +11,12 @@ git commit (short and full) and whether the tree was dirty (and where), the
 machine (uname -m, the CPU model, the core count), the date, the wall time
 and the quantities that the extractor KIND reads from the run's outputs:
 
-  history DIR             history_fe.csv or history_dem.csv and summary.txt
-                          of a run: velocity at given times, first failure,
-                          cut-through, final velocity, energy error, the
-                          range of the section width at impact over 0-20 us
+  history DIR|CSV         history_fe.csv or history_dem.csv and summary.txt
+                          of a run (or one history CSV): velocity at given
+                          times, first failure, cut-through, final
+                          velocity, energy error, the range of the section
+                          width at impact over 0-20 us, the spreading front
+  fit LOG                 the constants printed by identify_charmetant.py
   failure DIR DEM_CSV     the same FE run against a DEM history (the columns
                           of scripts/failure_table.py)
   summary DIR             every "key: number" line of summary.txt
@@ -103,9 +105,21 @@ def history_file(run):
 
 
 def extract_history(run):
-    h = read_csv(history_file(run))
-    summary = os.path.join(run, "summary.txt")
-    s = summary_pairs(summary) if os.path.exists(summary) else {}
+    """RUN is a run folder, or one history CSV of it (a Model = both run
+    has two): then the first failure is the CSV's first row with a failed
+    element, and the summary is not read."""
+    if run.endswith(".csv"):
+        h = read_csv(run)
+        s = {}
+        first = next((ti for ti, f in zip(h["t [us]"], h["failed elements"])
+                      if f > 0), None)
+        if first is not None:
+            s["first_failure"] = first
+        summary = ""
+    else:
+        h = read_csv(history_file(run))
+        summary = os.path.join(run, "summary.txt")
+        s = summary_pairs(summary) if os.path.exists(summary) else {}
     t, v = h["t [us]"], h["projectile velocity [m/s]"]
     q = {}
     for time in TIMES:
@@ -353,7 +367,26 @@ def extract_segment_length(log):
     return q
 
 
+def extract_fit(log):
+    """identify_charmetant.py: the first block of constants (the joint
+    fit), each with its standard error, and the condition number."""
+    q = {}
+    for line in lines_of(log):
+        m = re.match(r"\s+(k_e|k_tc|p|k_td) \[[^\]]*\]\s+(\S+)\s+\+-\s+(\S+)",
+                     line)
+        if m and m.group(1) not in q:
+            q[m.group(1)], q[m.group(1) + "_error"] = (float(m.group(2)),
+                                                       float(m.group(3)))
+        m = re.search(r"condition number of the relative Jacobian (\S+)", line)
+        if m and "condition_number" not in q:
+            q["condition_number"] = float(m.group(1))
+    if "k_e" not in q:
+        raise SystemExit("registry.py: no fitted constants in " + log)
+    return q
+
+
 EXTRACTORS = {
+    "fit": extract_fit,
     "segment_length": extract_segment_length,
     "history": extract_history, "failure": extract_failure,
     "summary": extract_summary, "elementary": extract_elementary,

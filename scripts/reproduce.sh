@@ -123,7 +123,9 @@ add identification_ktd quick \
 
 # ---- full: the long cases (minutes to hours each on 2 cores) -----------
 # The README's default case: the paper's study in one run (FE and DEM).
-add default full "$CODE" "summary:results/default" "bash scripts/run_default.sh"
+add default full "$CODE" \
+  "fe=history:results/default/history_fe.csv dem=history:results/default/history_dem.csv consistency:$out/default.log" \
+  "bash scripts/run_default.sh"
 # The DEM references of doc/validation.md section 6 and doc/identification.md
 # section 5 (stored as doc/figures/history_dem_km2_*.csv).
 add dem_km2_120ms full "$CODE" "history:$out/dem_km2_120ms" \
@@ -150,7 +152,7 @@ done
 # doc/identification.md: the elementary tests, the fit, the FE case with
 # the identified constants.
 add identification full "$CODE scripts/run_identification.sh scripts/identify_charmetant.py scripts/compare_identified.py" \
-  "tension=elementary:results/identification/tension.log compare:results/identification/impact.txt compare:results/identification/impact_ktd.txt kink:results/identification/kink.txt" \
+  "fit:results/identification/fit.txt tension=elementary:results/identification/tension.log compare:results/identification/impact.txt compare:results/identification/impact_ktd.txt kink:results/identification/kink.txt" \
   "bash scripts/run_identification.sh"
 # doc/ballistics.md: the velocity sweep.
 add ballistic_sweep full "$CODE scripts/ballistic_sweep.py" \
