@@ -102,31 +102,20 @@ namespace YarnImpact
     std::vector<FibreBreak>
     FibreBars::fibre_breaks(const MPI_Comm communicator) const
     {
-      // Three doubles per break of the own fibres (time, fibre, bar): one
-      // array to exchange.
-      std::vector<double> local;
+      std::vector<FibreBreak> own;
       for (unsigned int f = fibre_begin; f < fibre_end; ++f)
         for (unsigned int j = 0; j + 1 < n_nodes; ++j)
           if (broken[index(f, j)])
-            local.insert(local.end(),
-                         {break_time[index(f, j)], double(f), double(j)});
-      std::vector<FibreBreak> breaks;
-      for (const std::vector<double> &r :
-           dealii::Utilities::MPI::all_gather(communicator, local))
-        for (std::size_t k = 0; k + 2 < r.size(); k += 3)
-          {
-            FibreBreak b;
-            b.time               = r[k];
-            b.part               = "bars";
-            b.fibre              = static_cast<unsigned int>(r[k + 1]);
-            const unsigned int j = static_cast<unsigned int>(r[k + 2]);
-            b.x                  = 0.5 * (node_x(j) + node_x(j + 1));
-            b.y                  = fibre_y[b.fibre];
-            b.z                  = fibre_z[b.fibre];
-            breaks.push_back(b);
-          }
-      std::sort(breaks.begin(), breaks.end(), break_less);
-      return breaks;
+            {
+              FibreBreak b;
+              b.time  = break_time[index(f, j)];
+              b.fibre = f;
+              b.x     = 0.5 * (node_x(j) + node_x(j + 1));
+              b.y     = fibre_y[f];
+              b.z     = fibre_z[f];
+              own.push_back(b);
+            }
+      return gather_fibre_breaks(own, "bars", communicator);
     }
 
 

@@ -5,8 +5,6 @@
 #include <yarn_impact/coupling/fibre_bars.h>
 #include <yarn_impact/dem/vtu_writer.h>
 
-#include <deal.II/base/mpi.h>
-
 #include <cstdint>
 #include <iomanip>
 #include <sstream>
@@ -20,10 +18,6 @@ namespace YarnImpact
                               const unsigned int snapshot) const
     {
       namespace VTU = DEM::VTU;
-      const unsigned int rank =
-        dealii::Utilities::MPI::this_mpi_process(communicator);
-      const unsigned int n_ranks =
-        dealii::Utilities::MPI::n_mpi_processes(communicator);
       std::vector<float> points;
       std::vector<std::int32_t> lines;
       std::vector<VTU::Array> pd(3), cd(3);
@@ -80,24 +74,13 @@ namespace YarnImpact
         }
       std::ostringstream base;
       base << "bars_" << std::setw(4) << std::setfill('0') << snapshot;
-      VTU::write_piece(directory + "/" + base.str() + "_r" +
-                         std::to_string(rank) + ".vtu",
-                       points,
-                       lines,
-                       pd,
-                       cd);
-      if (rank == 0)
-        {
-          std::vector<std::string> pieces;
-          for (unsigned int q = 0; q < n_ranks; ++q)
-            pieces.push_back(base.str() + "_r" + std::to_string(q) + ".vtu");
-          VTU::write_record(directory + "/" + base.str() + ".pvtu",
-                            pieces,
-                            pd,
-                            cd);
-        }
-      MPI_Barrier(communicator);
-      return base.str() + ".pvtu";
+      return VTU::write_parallel(directory,
+                                 base.str(),
+                                 points,
+                                 lines,
+                                 pd,
+                                 cd,
+                                 communicator);
     }
   } // namespace Coupling
 } // namespace YarnImpact

@@ -271,9 +271,7 @@ namespace YarnImpact
                           const Decomposition &decomposition,
                           const Spheres &spheres)
       {
-        // Three doubles per break (time, fibre, lower station): one array
-        // to exchange.
-        std::vector<double> local;
+        std::vector<FibreBreak> own;
         const unsigned int nf = chains.nf;
         const unsigned int end =
           std::min(decomposition.st_end, chains.n_st - 1);
@@ -282,27 +280,17 @@ namespace YarnImpact
             {
               const std::size_t i = decomposition.local_index(s, f);
               if (spheres.broken[i])
-                local.insert(local.end(),
-                             {spheres.break_time[i], double(f), double(s)});
+                {
+                  FibreBreak b;
+                  b.time  = spheres.break_time[i];
+                  b.fibre = f;
+                  b.x     = 0.5 * (chains.sx0[s] + chains.sx0[s + 1]);
+                  b.y     = chains.fy[f];
+                  b.z     = chains.fz[f];
+                  own.push_back(b);
+                }
             }
-        const std::vector<std::vector<double>> all =
-          dealii::Utilities::MPI::all_gather(decomposition.comm, local);
-        std::vector<FibreBreak> breaks;
-        for (const std::vector<double> &r : all)
-          for (std::size_t k = 0; k + 2 < r.size(); k += 3)
-            {
-              FibreBreak b;
-              b.time               = r[k];
-              b.part               = "dem";
-              b.fibre              = static_cast<unsigned int>(r[k + 1]);
-              const unsigned int s = static_cast<unsigned int>(r[k + 2]);
-              b.x                  = 0.5 * (chains.sx0[s] + chains.sx0[s + 1]);
-              b.y                  = chains.fy[b.fibre];
-              b.z                  = chains.fz[b.fibre];
-              breaks.push_back(b);
-            }
-        std::sort(breaks.begin(), breaks.end(), break_less);
-        return breaks;
+        return YarnImpact::gather_fibre_breaks(own, "dem", decomposition.comm);
       }
     } // namespace internal
   }   // namespace DEM

@@ -28,8 +28,6 @@ namespace YarnImpact
         const unsigned int st_begin = decomposition.st_begin,
                            st_end   = decomposition.st_end,
                            g_hi = decomposition.g_hi, lo = decomposition.lo;
-        const unsigned int rank        = decomposition.rank,
-                           n_ranks     = decomposition.n_ranks;
         const std::vector<double> &sx0 = chains.sx0, &fy = chains.fy,
                                   &fz = chains.fz, &fw = chains.fw;
         const std::vector<double> &pos = spheres.pos, &vel = spheres.vel;
@@ -85,21 +83,13 @@ namespace YarnImpact
         std::ostringstream base;
         base << (chains.clamp_part ? "dem_clamp_" : "dem_") << std::setw(4)
              << std::setfill('0') << index;
-        const std::string piece =
-          base.str() + "_r" + std::to_string(rank) + ".vtu";
-        VTU::write_piece(directory + "/" + piece, points, lines, pd, cd);
-        if (rank == 0)
-          {
-            std::vector<std::string> pieces;
-            for (unsigned int q = 0; q < n_ranks; ++q)
-              pieces.push_back(base.str() + "_r" + std::to_string(q) + ".vtu");
-            VTU::write_record(directory + "/" + base.str() + ".pvtu",
-                              pieces,
-                              pd,
-                              cd);
-          }
-        MPI_Barrier(decomposition.comm);
-        return base.str() + ".pvtu";
+        return VTU::write_parallel(directory,
+                                   base.str(),
+                                   points,
+                                   lines,
+                                   pd,
+                                   cd,
+                                   decomposition.comm);
       }
     } // namespace internal
   }   // namespace DEM

@@ -169,6 +169,41 @@ namespace YarnImpact
         out << "</PUnstructuredGrid>\n</VTKFile>\n";
         atomic.commit();
       }
+
+
+      std::string
+      write_parallel(const std::string &directory,
+                     const std::string &base,
+                     const std::vector<float> &points,
+                     const std::vector<int32_t> &lines,
+                     const std::vector<Array> &point_data,
+                     const std::vector<Array> &cell_data,
+                     const MPI_Comm communicator)
+      {
+        int rank = 0, n_ranks = 1;
+        MPI_Comm_rank(communicator, &rank);
+        MPI_Comm_size(communicator, &n_ranks);
+        const auto piece = [&](const int q) {
+          return base + "_r" + std::to_string(q) + ".vtu";
+        };
+        write_piece(directory + "/" + piece(rank),
+                    points,
+                    lines,
+                    point_data,
+                    cell_data);
+        if (rank == 0)
+          {
+            std::vector<std::string> pieces;
+            for (int q = 0; q < n_ranks; ++q)
+              pieces.push_back(piece(q));
+            write_record(directory + "/" + base + ".pvtu",
+                         pieces,
+                         point_data,
+                         cell_data);
+          }
+        MPI_Barrier(communicator);
+        return base + ".pvtu";
+      }
     } // namespace VTU
   }   // namespace DEM
 } // namespace YarnImpact

@@ -1,6 +1,8 @@
 #ifndef yarn_impact_core_observables_h
 #define yarn_impact_core_observables_h
 
+#include <mpi.h>
+
 #include <vector>
 
 namespace YarnImpact
@@ -108,6 +110,14 @@ namespace YarnImpact
       return a.x < b.x;
     return a.fibre < b.fibre;
   }
+
+
+  /** Every rank's @p own breaks, all of part @p part, on every rank, in
+   * the order of break_less() (collective on @p communicator). */
+  std::vector<FibreBreak>
+  gather_fibre_breaks(const std::vector<FibreBreak> &own,
+                      const char *part,
+                      const MPI_Comm communicator);
 
 
   struct Observables

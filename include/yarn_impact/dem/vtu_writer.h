@@ -1,6 +1,8 @@
 #ifndef yarn_impact_dem_vtu_writer_h
 #define yarn_impact_dem_vtu_writer_h
 
+#include <mpi.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,6 +53,21 @@ namespace YarnImpact
                    const std::vector<std::string> &pieces,
                    const std::vector<Array> &point_data,
                    const std::vector<Array> &cell_data);
+
+      /**
+       * Write this rank's piece `<directory>/<base>_rR.vtu` (R its rank in
+       * @p communicator) and, on rank 0, the record `<base>.pvtu` of every
+       * rank's piece; collective (the record is complete when it returns).
+       * @return the record's file name, relative to @p directory
+       */
+      std::string
+      write_parallel(const std::string &directory,
+                     const std::string &base,
+                     const std::vector<float> &points,
+                     const std::vector<int32_t> &lines,
+                     const std::vector<Array> &point_data,
+                     const std::vector<Array> &cell_data,
+                     const MPI_Comm communicator);
     } // namespace VTU
   }   // namespace DEM
 } // namespace YarnImpact
