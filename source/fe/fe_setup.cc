@@ -241,6 +241,19 @@ namespace YarnImpact
             }
           cells.JxW.push_back(jxw);
         }
+      if (parameters.fibre_direction)
+        {
+          Mechanics::FibreFrame R[n_q];
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const Point<3> &p   = fe_values.quadrature_point(q);
+              const double xyz[3] = {p[0], p[1], p[2]};
+              double M[3];
+              parameters.fibre_direction(xyz, M);
+              Mechanics::fibre_frame(M, R[q]);
+            }
+          cells.set_fibre_frames(offset / grad_size, R);
+        }
     }
 
 
