@@ -11,10 +11,14 @@
 //   cell's nodal forces are Q f and its energy and damage the same;
 // - the kernel's forces against the scalar path's, Gauss point by Gauss
 //   point, and the frame of M = e_x as the straight yarn's path, bit for
-//   bit.
+//   bit;
+// - Mechanics::invariants(F, R) with the fibre frame of M against the
+//   law's invariants.
 // The closed forms along an oblique M are in fibre_direction_closed_forms.cc.
 
 #include "fibre_direction.h"
+
+#include <type_traits>
 
 using namespace FibreDirectionTest;
 
@@ -37,7 +41,7 @@ namespace
   void
   check_law_symmetry(const Law &law, const char *name)
   {
-    double worst_P = 0., worst_W = 0., worst_inv = 0.;
+    double worst_P = 0., worst_W = 0., worst_inv = 0., worst_kin = 0.;
     for (unsigned int sample = 0; sample < 200; ++sample)
       {
         Matrix3 Q, F, QFQ, P, QPQ, P_rotated;
@@ -62,11 +66,23 @@ namespace
                     std::abs(inv_rotated.elongation - inv.elongation),
                     std::abs(inv_rotated.compaction - inv.compaction),
                     std::abs(inv_rotated.distortion - inv.distortion)});
+        // The kinematics' own invariants with the fibre frame of M (what
+        // the DEM's measurements use) against the law's.
+        Matrix3 R;
+        YarnImpact::Mechanics::fibre_frame(M, R);
+        const Invariants kin = YarnImpact::Mechanics::invariants(F, R);
+        worst_kin =
+          std::max(worst_kin, std::abs(kin.elongation - inv.elongation));
+        if constexpr (std::is_same_v<Law, CharmetantLaw>)
+          worst_kin = std::max({worst_kin,
+                                std::abs(kin.compaction - inv.compaction),
+                                std::abs(kin.distortion - inv.distortion)});
       }
     std::printf("%s: 200 random (Q, F, M)\n", name);
     report("P(Q F Q^T; Q M) = Q P(F; M) Q^T", worst_P, 1e-12);
     report("W(Q F Q^T; Q M) = W(F; M)", worst_W, 1e-12);
     report("the same invariants (difference)", worst_inv, 1e-13);
+    report("Mechanics::invariants(F, R) = the law's", worst_kin, 1e-13);
   }
 
   /** The same forces from the law's scalar path, Gauss point by Gauss

@@ -127,8 +127,8 @@ namespace YarnImpact
        * reference point X = (x, y, z) [m], given to every Gauss point as
        * its fibre frame (CellData::frames, doc/theory.md section 1.8).
        * Empty: M = e_x everywhere, the straight yarn, and the force loop's
-       * straight path. The crack band's width and the stable step's fibre
-       * axis of a cell are still measured along x. */
+       * straight path. A cell's crack band width and the stable step's
+       * fibre axis are then measured along its mean fibre direction. */
       std::function<void(const double *, double *)> fibre_direction;
 
       static void
