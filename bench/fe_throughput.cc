@@ -4,13 +4,19 @@
  * refined along the axis, and the wall time of the default case.
  *
  * Usage: bench_fe_throughput [n_steps] [prm file of the default case, or -
- * to skip it]
+ * to skip it] [frames]
+ *
+ * With `frames` the model gives every Gauss point the fibre frame of e_x
+ * (FE::Parameters::fibre_direction): the same numbers through the force
+ * loop's path for fibres at any angle, to measure what that path costs
+ * against the straight one.
  */
 #include <yarn_impact/analysis/run_summary.h>
 #include <yarn_impact/app/application.h>
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/projectile.h>
 #include <yarn_impact/core/time_stepping.h>
+#include <yarn_impact/fe/fe_model.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -31,13 +37,15 @@ main(int argc, char **argv)
   const bool is_root  = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
   const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
   const unsigned int n_steps = argc > 1 ? std::stoi(argv[1]) : 400;
+  const bool frames          = argc > 3 && std::string(argv[3]) == "frames";
   std::ostream &out          = std::cout;
 
   if (is_root)
-    out << "FE force-loop throughput, Charmetant law, " << n_ranks
-        << " rank(s)\n"
+    out << "FE force-loop throughput, Charmetant law, " << n_ranks << " rank(s)"
+        << (frames ? ", fibre frames (path for any M)" : "") << "\n"
         << std::setw(10) << "cells" << std::setw(12) << "steps" << std::setw(14)
-        << "wall [s]" << std::setw(26) << "cell-steps/s per core\n";
+        << "wall [s]" << std::setw(26) << "cell-steps/s per core"
+        << std::setw(26) << "cell-steps per CPU s\n";
   for (const unsigned int axial : {100u, 400u, 1600u})
     {
       dealii::ParameterHandler prm;
@@ -49,7 +57,19 @@ main(int argc, char **argv)
       AllParameters p;
       p.parse_parameters(prm);
 
-      auto model = create_model("fe", p, comm);
+      std::unique_ptr<ImpactModel> model;
+      if (frames)
+        {
+          FE::Parameters fe;
+          fe.parse_parameters(prm);
+          fe.fibre_direction = [](const double *, double *M) {
+            M[0] = 1.;
+            M[1] = M[2] = 0.;
+          };
+          model = FE::create_model(p.shared, fe, comm);
+        }
+      else
+        model = create_model("fe", p, comm);
       Projectile projectile(p.shared.projectile,
                             p.shared.yarn.thickness_semi_axis);
       std::ostringstream sink;
@@ -73,12 +93,17 @@ main(int argc, char **argv)
         step();
       MPI_Barrier(comm);
       const double wall = timer.wall_time();
+      // The process's CPU time as well: on a shared machine the wall time
+      // also counts the time other jobs held the core.
+      const double cpu = timer.cpu_time();
       const double rate =
         double(model->n_elements()) * n_steps / wall / n_ranks;
+      const double cpu_rate = double(model->n_elements()) * n_steps / cpu;
       if (is_root)
         out << std::setw(10) << model->n_elements() << std::setw(12) << n_steps
             << std::setw(14) << std::setprecision(4) << wall << std::setw(24)
-            << std::setprecision(4) << rate / 1e6 << " M" << std::endl;
+            << std::setprecision(4) << rate / 1e6 << " M" << std::setw(24)
+            << std::setprecision(4) << cpu_rate / 1e6 << " M" << std::endl;
     }
 
   if (argc > 2 && std::string(argv[2]) != "-")

@@ -29,12 +29,12 @@ namespace YarnImpact
         // The section the FE part was extruded from: its vertices are the
         // coupled nodes of each node layer of an overlap.
         Triangulation<2> section;
-        FE::create_yarn_section(section,
-                                shared.yarn.thickness_semi_axis,
-                                shared.yarn.width_semi_axis,
-                                fe_parameters.section_refinements,
-                                false,
-                                fe_parameters.preserve_section_area);
+        create_yarn_section(section,
+                            shared.yarn.thickness_semi_axis,
+                            shared.yarn.width_semi_axis,
+                            fe_parameters.section_refinements,
+                            false,
+                            fe_parameters.preserve_section_area);
         if (layout.fibre_bars)
           {
             const DEM::CouplingView dem = DEM::coupling_view(*dem_model);

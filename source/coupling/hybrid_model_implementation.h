@@ -7,6 +7,7 @@
 #include <yarn_impact/core/impact_simulation.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/projectile.h>
+#include <yarn_impact/core/yarn_section.h>
 #include <yarn_impact/coupling/bridging_domain.h>
 #include <yarn_impact/coupling/fibre_bars.h>
 #include <yarn_impact/coupling/hybrid_model.h>
@@ -14,7 +15,6 @@
 #include <yarn_impact/coupling/overlap.h>
 #include <yarn_impact/dem/dem_model.h>
 #include <yarn_impact/fe/fe_model.h>
-#include <yarn_impact/fe/yarn_mesh.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/grid/tria.h>

@@ -2,10 +2,10 @@
 // (doc/hybrid.md section 3.3), and where a fibre lies in the section.
 
 #include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/core/yarn_section.h>
 #include <yarn_impact/coupling/hybrid_parts.h>
 #include <yarn_impact/dem/packing.h>
 #include <yarn_impact/fe/fe_model.h>
-#include <yarn_impact/fe/yarn_mesh.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -137,12 +137,12 @@ namespace YarnImpact
                        const DEM::Parameters &dem)
     {
       Triangulation<2> section;
-      FE::create_yarn_section(section,
-                              shared.yarn.thickness_semi_axis,
-                              shared.yarn.width_semi_axis,
-                              fe.section_refinements,
-                              false,
-                              fe.preserve_section_area);
+      create_yarn_section(section,
+                          shared.yarn.thickness_semi_axis,
+                          shared.yarn.width_semi_axis,
+                          fe.section_refinements,
+                          false,
+                          fe.preserve_section_area);
       const DEM::FibreCentres centres = DEM::fibre_centres(shared, dem, false);
       const double share = shared.yarn.section_area() / centres.size();
       std::vector<std::array<double, 4>> target(section.n_active_cells(),

@@ -25,13 +25,18 @@ namespace YarnImpact
       /**
        * Internal forces f (24 values [N], not yet negated) of one cell from
        * its nodal displacements u, shape gradients and JxW, one Gauss point
-       * at a time (any law).
+       * at a time (any law). With @p oriented the gradients are in the
+       * Gauss points' fibre frames @p frame (CellData::frames) and F starts
+       * from the frame instead of I: F is then F R, the law's argument,
+       * and P the law's P', whose forces with the turned gradients are
+       * those of P' R^T; the straight yarn compiles without it.
        */
-      template <class Law>
+      template <class Law, bool oriented>
       inline CellResult
       integrate_scalar(const Law &law,
                        const double *u,
                        const double *grad,
+                       const double *frame,
                        const double *JxW,
                        const double fibre_damage,
                        double *f)
@@ -44,15 +49,23 @@ namespace YarnImpact
             double g[n_nodes * 3];
             gather_gradients(grad, q, g);
             Mechanics::Matrix3 F, P;
-            deformation_gradient(u, g, F);
+            if constexpr (oriented)
+              {
+                Mechanics::FibreFrame R;
+                for (unsigned int k = 0; k < 9; ++k)
+                  R[k] = frame[frame_index(q, k)];
+                deformation_gradient(u, g, R, F);
+              }
+            else
+              deformation_gradient(u, g, F);
             Mechanics::Invariants inv;
             double W = law.stress(F, P, inv);
             if constexpr (Law::separable_fibre_term)
               if (fibre_damage > 0.)
                 {
                   // Remove d times the fibre part (k_e I_e / I4) F M (x) M
-                  // of P and d times 1/2 k_e I_e^2 of W (M = e_x: column 0
-                  // of F).
+                  // of P and d times 1/2 k_e I_e^2 of W (M = e_x in the
+                  // fibre frame: column 0 of F).
                   const double I4 = F[0] * F[0] + F[3] * F[3] + F[6] * F[6];
                   const double k  = fibre_damage * law.axial_modulus();
                   const double a  = k * inv.elongation / I4;
@@ -84,11 +97,12 @@ namespace YarnImpact
        * The same for a vectorised law (Law::vectorised), four Gauss points
        * at a time in SIMD lanes: the hot loop of the benchmark.
        */
-      template <class Law>
+      template <class Law, bool oriented>
       inline CellResult
       integrate_lanes(const Law &law,
                       const double *u,
                       const double *grad,
+                      const double *frame,
                       const double *JxW,
                       const double fibre_damage,
                       double *f)
@@ -108,8 +122,13 @@ namespace YarnImpact
                 for (unsigned int l = 0; l < n_lanes; ++l)
                   g[a][d][l] = gb[lane_gradient_index(a, d, l)];
             Double4 F[9];
-            for (unsigned int k = 0; k < 9; ++k)
-              F[k] = Double4{0., 0., 0., 0.} + (k % 4 == 0 ? 1. : 0.);
+            if constexpr (oriented)
+              std::memcpy(F,
+                          frame + block * 9 * n_lanes,
+                          sizeof(F)); // the block's frames, [entry][lane]
+            else
+              for (unsigned int k = 0; k < 9; ++k)
+                F[k] = Double4{0., 0., 0., 0.} + (k % 4 == 0 ? 1. : 0.);
             for (unsigned int a = 0; a < n_nodes; ++a)
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)
@@ -154,19 +173,32 @@ namespace YarnImpact
 #pragma GCC diagnostic pop
 
       /** One cell with the path the law supports. */
-      template <class Law>
+      template <class Law, bool oriented>
       inline CellResult
       integrate_cell(const Law &law,
                      const double *u,
                      const double *grad,
+                     const double *frame,
                      const double *JxW,
                      const double fibre_damage,
                      double *f)
       {
         if constexpr (Law::vectorised)
-          return integrate_lanes(law, u, grad, JxW, fibre_damage, f);
+          return integrate_lanes<Law, oriented>(law,
+                                                u,
+                                                grad,
+                                                frame,
+                                                JxW,
+                                                fibre_damage,
+                                                f);
         else
-          return integrate_scalar(law, u, grad, JxW, fibre_damage, f);
+          return integrate_scalar<Law, oriented>(law,
+                                                 u,
+                                                 grad,
+                                                 frame,
+                                                 JxW,
+                                                 fibre_damage,
+                                                 f);
       }
 
       // Compiled twice, for CPUs with AVX2 and FMA and for any x86-64, and
@@ -175,16 +207,23 @@ namespace YarnImpact
       // machine that reports a generic Xeon it silently ran the generic
       // clone.)
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-      template <class Law>
+      template <class Law, bool oriented>
       __attribute__((target("avx2,fma"), flatten)) CellResult
       integrate_avx2(const Law &law,
                      const double *u,
                      const double *grad,
+                     const double *frame,
                      const double *JxW,
                      const double fibre_damage,
                      double *f)
       {
-        return integrate_cell(law, u, grad, JxW, fibre_damage, f);
+        return integrate_cell<Law, oriented>(law,
+                                             u,
+                                             grad,
+                                             frame,
+                                             JxW,
+                                             fibre_damage,
+                                             f);
       }
 
       // YARN_IMPACT_PORTABLE_KERNEL=1 forces the portable variant, to
@@ -194,20 +233,33 @@ namespace YarnImpact
         std::getenv("YARN_IMPACT_PORTABLE_KERNEL") == nullptr;
 #endif
 
-      template <class Law>
+      template <class Law, bool oriented>
       __attribute__((flatten)) CellResult
       integrate(const Law &law,
                 const double *u,
                 const double *grad,
+                const double *frame,
                 const double *JxW,
                 const double fibre_damage,
                 double *f)
       {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
         if (cpu_has_avx2_fma)
-          return integrate_avx2(law, u, grad, JxW, fibre_damage, f);
+          return integrate_avx2<Law, oriented>(law,
+                                               u,
+                                               grad,
+                                               frame,
+                                               JxW,
+                                               fibre_damage,
+                                               f);
 #endif
-        return integrate_cell(law, u, grad, JxW, fibre_damage, f);
+        return integrate_cell<Law, oriented>(law,
+                                             u,
+                                             grad,
+                                             frame,
+                                             JxW,
+                                             fibre_damage,
+                                             f);
       }
     } // namespace
 
@@ -220,6 +272,36 @@ namespace YarnImpact
         return "avx2+fma";
 #endif
       return "portable";
+    }
+
+
+    void
+    CellData::set_fibre_frames(const unsigned int c,
+                               const Mechanics::FibreFrame (&R)[n_q])
+    {
+      // The cells before c without a frame get the identity (e_x).
+      const std::size_t n_framed = frames.size() / frame_size;
+      frames.resize(std::max<std::size_t>(n_framed, c + 1) * frame_size, 0.);
+      for (std::size_t b = n_framed; b < c; ++b)
+        for (unsigned int q = 0; q < n_q; ++q)
+          for (const unsigned int k : {0u, 4u, 8u})
+            frames[b * frame_size + frame_index(q, k)] = 1.;
+      double *grad = &grads[c * grad_size];
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          for (unsigned int k = 0; k < 9; ++k)
+            frames[c * frame_size + frame_index(q, k)] = R[q][k];
+          // grad N_a in the frame: component j is (column j of R) . grad.
+          for (unsigned int a = 0; a < n_nodes; ++a)
+            {
+              const double g[3] = {grad[gradient_index(q, a, 0)],
+                                   grad[gradient_index(q, a, 1)],
+                                   grad[gradient_index(q, a, 2)]};
+              for (unsigned int j = 0; j < 3; ++j)
+                grad[gradient_index(q, a, j)] =
+                  R[q][j] * g[0] + R[q][3 + j] * g[1] + R[q][6 + j] * g[2];
+            }
+        }
     }
 
 
@@ -236,6 +318,7 @@ namespace YarnImpact
       using Kind          = FailureLaw::Kind;
       const bool fails    = failure.kind != Kind::none;
       const bool progress = failure.kind == Kind::progressive;
+      const bool oriented = !cells.frames.empty();
       double energy       = 0.;
       for (unsigned int c = 0; c < cells.size(); ++c)
         {
@@ -244,6 +327,8 @@ namespace YarnImpact
           const unsigned int *dofs = &cells.dofs[c * n_cell_dofs];
           const double *grad       = &cells.grads[c * grad_size];
           const double *JxW        = &cells.JxW[c * n_q];
+          const double *frame =
+            oriented ? &cells.frames[c * frame_size] : nullptr;
           double u[n_cell_dofs], f[n_cell_dofs];
           for (unsigned int k = 0; k < n_cell_dofs; ++k)
             u[k] = displacement.local_element(dofs[k]);
@@ -253,11 +338,16 @@ namespace YarnImpact
               {
                 // The damage of this step, from the fibre stretches of this
                 // configuration, before the forces (explicit, no lag):
-                // F M = e_x + sum_a u_a dN_a/dX at each Gauss point.
+                // F M = M + sum_a u_a dN_a/dX . M at each Gauss point
+                // (M = e_x on the straight yarn; with frames, column 0 of
+                // the frame and the gradients' first component in it).
                 double max_Ie = -1., fibre_energy = 0.;
                 for (unsigned int q = 0; q < n_q; ++q)
                   {
                     double Fx[3] = {1., 0., 0.};
+                    if (oriented)
+                      for (unsigned int i = 0; i < 3; ++i)
+                        Fx[i] = frame[frame_index(q, 3 * i)];
                     for (unsigned int a = 0; a < n_nodes; ++a)
                       {
                         const double g0 = grad[gradient_index(q, a, 0)];
@@ -294,7 +384,16 @@ namespace YarnImpact
                   }
                 fibre_damage = cells.damage[c];
               }
-          const CellResult r = integrate(law, u, grad, JxW, fibre_damage, f);
+          const CellResult r =
+            oriented
+              ? integrate<Law, true>(law, u, grad, frame, JxW, fibre_damage, f)
+              : integrate<Law, false>(law,
+                                      u,
+                                      grad,
+                                      frame,
+                                      JxW,
+                                      fibre_damage,
+                                      f);
           const double cell_energy  = r.energy;
           cells.energy[c]           = cell_energy;
           cells.log_stretch[c]      = r.max_elongation;

@@ -244,10 +244,11 @@ namespace YarnImpact
           double sums[10] = {};
           for (unsigned int q = 0; q < n_q; ++q)
             {
+              // F and P in the Gauss point's fibre frame when the cells
+              // have frames: the invariants and the Cauchy stress
+              // P F^T / J do not change.
               Mechanics::Matrix3 F, P;
-              double g[n_nodes * 3];
-              gather_gradients(&cells.grads[c * grad_size], q, g);
-              deformation_gradient(u, g, F);
+              cell_deformation_gradient(cells, c, q, u, F);
               Mechanics::Invariants inv;
               law.stress(F, P, inv);
               if constexpr (Law::separable_fibre_term)

@@ -241,6 +241,19 @@ namespace YarnImpact
             }
           cells.JxW.push_back(jxw);
         }
+      if (parameters.fibre_direction)
+        {
+          Mechanics::FibreFrame R[n_q];
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const Point<3> &p   = fe_values.quadrature_point(q);
+              const double xyz[3] = {p[0], p[1], p[2]};
+              double M[3];
+              parameters.fibre_direction(xyz, M);
+              Mechanics::fibre_frame(M, R[q]);
+            }
+          cells.set_fibre_frames(offset / grad_size, R);
+        }
     }
 
 
@@ -250,23 +263,52 @@ namespace YarnImpact
       const typename DoFHandler<3>::active_cell_iterator &cell,
       const FEValues<3> &fe_values)
     {
+      // The cell's mean fibre direction M: e_x on the straight yarn, the
+      // normalised sum of its Gauss points' with FE::Parameters::
+      // fibre_direction (exactly e_x again when they all are).
+      double M[3] = {1., 0., 0.};
+      if (parameters.fibre_direction)
+        {
+          M[0] = 0.;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const Point<3> &p   = fe_values.quadrature_point(q);
+              const double xyz[3] = {p[0], p[1], p[2]};
+              double Mq[3];
+              parameters.fibre_direction(xyz, Mq);
+              for (unsigned int d = 0; d < 3; ++d)
+                M[d] += Mq[d];
+            }
+          const double n = std::sqrt(M[0] * M[0] + M[1] * M[1] + M[2] * M[2]);
+          for (double &m : M)
+            m /= n;
+        }
+      // A reference point's coordinate along M (x on the straight yarn).
+      const auto along = [this, &M](const Point<3> &X) {
+        return parameters.fibre_direction
+                 ? X[0] * M[0] + X[1] * M[1] + X[2] * M[2]
+                 : X[0];
+      };
       double x_lo = std::numeric_limits<double>::max(), x_hi = -x_lo;
+      double f_lo = x_lo, f_hi = x_hi;
       double y_top = -std::numeric_limits<double>::max();
       for (unsigned int a = 0; a < n_nodes; ++a)
         {
           y_top = std::max(y_top, cell->vertex(a)[1]);
           x_lo  = std::min(x_lo, cell->vertex(a)[0]);
           x_hi  = std::max(x_hi, cell->vertex(a)[0]);
+          f_lo  = std::min(f_lo, along(cell->vertex(a)));
+          f_hi  = std::max(f_hi, along(cell->vertex(a)));
         }
       // The local axis along the fibre: the one whose opposite faces are
-      // farthest apart in x.
+      // farthest apart along M.
       unsigned char axis = 0;
       double best        = -1.;
       for (unsigned int k = 0; k < 3; ++k)
         {
           double dx = 0.;
           for (unsigned int a = 0; a < n_nodes; ++a)
-            dx += ((a >> k) & 1 ? 1. : -1.) * cell->vertex(a)[0];
+            dx += ((a >> k) & 1 ? 1. : -1.) * along(cell->vertex(a));
           if (std::abs(dx) > best)
             {
               best = std::abs(dx);
@@ -275,8 +317,9 @@ namespace YarnImpact
         }
       cell_axis.push_back(axis);
       // The crack band's width: the cell's reference length along the
-      // fibre (x faces are planes x = const on the extruded mesh).
-      cells.fibre_length.push_back(x_hi - x_lo);
+      // fibre (the faces across the fibre are planes x = const on the
+      // extruded mesh, and nearly normal to M on a swept one).
+      cells.fibre_length.push_back(f_hi - f_lo);
       // Depth below the struck face y = +a_y (the projectile comes from
       // +y), 0 there and 1 at y = -a_y, of the cell's shallowest point: its
       // fibres nearest the struck face break first, and its damage starts

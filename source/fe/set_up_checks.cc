@@ -3,6 +3,7 @@
 // estimate.
 
 #include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/fe/cell_kernel.h>
 #include <yarn_impact/fe/failure_law.h>
 #include <yarn_impact/fe/fe_model.h>
 
@@ -123,8 +124,13 @@ namespace YarnImpact
       const double section = std::pow(4., parameters.section_refinements);
       const double global  = std::pow(8., parameters.global_refinements);
       MemoryEstimate e;
-      e.n_elements   = 12. * 100. * axial * section * global;
-      e.bytes        = 6.5e3 * e.n_elements;
+      e.n_elements = 12. * 100. * axial * section * global;
+      // With fibre directions each cell also holds its Gauss points'
+      // frames (CellData::frames).
+      e.bytes =
+        (6.5e3 +
+         (parameters.fibre_direction ? sizeof(double) * frame_size : 0.)) *
+        e.n_elements;
       e.element_name = "cells";
       e.parameter =
         (axial >= section && axial >= global ? "FE/Cells along the axis"

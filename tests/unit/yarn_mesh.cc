@@ -5,6 +5,7 @@
 
 #include <yarn_impact/app/application.h>
 #include <yarn_impact/core/projectile.h>
+#include <yarn_impact/core/yarn_section.h>
 #include <yarn_impact/fe/yarn_mesh.h>
 
 #include <deal.II/base/mpi.h>
@@ -31,7 +32,7 @@ main(int argc, char **argv)
   for (unsigned int r = 0; r < 5; ++r)
     {
       dealii::Triangulation<2> section;
-      FE::create_yarn_section(section, a_y, a_z, r, false, false);
+      create_yarn_section(section, a_y, a_z, r, false, false);
       const double ratio = dealii::GridTools::volume(section) / ellipse;
       const double error = 1. - ratio;
       std::printf(
@@ -47,7 +48,7 @@ main(int argc, char **argv)
   for (const bool half : {false, true})
     {
       dealii::Triangulation<2> section;
-      FE::create_yarn_section(section, a_y, a_z, 0, half, true);
+      create_yarn_section(section, a_y, a_z, 0, half, true);
       std::printf("area-preserving %s section: ratio %.12f\n",
                   half ? "half" : "full",
                   dealii::GridTools::volume(section) / ellipse *

@@ -56,6 +56,21 @@ namespace YarnImpact
              lane_gradient_index(a, d, q % internal::n_lanes);
     }
 
+    /** Fibre-frame values stored per cell: a FibreFrame (9 values) per
+     * Gauss point. */
+    constexpr unsigned int frame_size = 9 * n_q;
+
+    /** Where entry @p k (row-major) of the fibre frame of Gauss point @p q
+     * lies among a cell's frame_size values: [block][entry][lane], as the
+     * gradients, so that the vectorised loop loads entry k of the four
+     * Gauss points of a block as one Double4. */
+    constexpr unsigned int
+    frame_index(const unsigned int q, const unsigned int k)
+    {
+      return (q / internal::n_lanes) * 9 * internal::n_lanes +
+             k * internal::n_lanes + q % internal::n_lanes;
+    }
+
     /** The shape gradients of Gauss point @p q of a cell, g[3a + d]
      * [1/m], from the cell's stored values @p grad. */
     inline void
@@ -77,6 +92,31 @@ namespace YarnImpact
     {
       F[0] = F[4] = F[8] = 1.;
       F[1] = F[2] = F[3] = F[5] = F[6] = F[7] = 0.;
+      for (unsigned int a = 0; a < n_nodes; ++a)
+        {
+          const double g0 = g[3 * a], g1 = g[3 * a + 1], g2 = g[3 * a + 2];
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              const double ui = u[3 * a + i];
+              F[3 * i] += ui * g0;
+              F[3 * i + 1] += ui * g1;
+              F[3 * i + 2] += ui * g2;
+            }
+        }
+    }
+
+    /** F R = R + sum_a u_a (x) g_a at one Gauss point with the fibre
+     * frame @p R, from the nodal displacements u [m] and the shape
+     * gradients g [1/m] in that frame (R^T grad N_a, CellData::frames):
+     * the deformation gradient a law takes in its frame. */
+    inline void
+    deformation_gradient(const double *u,
+                         const double *g,
+                         const Mechanics::FibreFrame &R,
+                         Mechanics::Matrix3 &F)
+    {
+      for (unsigned int k = 0; k < 9; ++k)
+        F[k] = R[k];
       for (unsigned int a = 0; a < n_nodes; ++a)
         {
           const double g0 = g[3 * a], g1 = g[3 * a + 1], g2 = g[3 * a + 2];
@@ -116,6 +156,17 @@ namespace YarnImpact
       std::vector<double> grads;
       /** Gauss weights times Jacobians [m^3]. */
       std::vector<double> JxW;
+      /** The fibre frames (Mechanics::FibreFrame: M, T1, T2 in the
+       * reference configuration) of the Gauss points, frame_size values
+       * per cell laid out as frame_index() says. Empty when every fibre
+       * lies along x (the straight yarn): the force loop then runs its
+       * straight path, R = I, and loads nothing. With frames, #grads holds
+       * each Gauss point's shape gradients in its frame, R^T grad N_a, so
+       * that R + sum_a u_a (x) R^T grad N_a is F R, the deformation
+       * gradient that a law takes in its frame, and the nodal forces
+       * P' R^T grad N_a are those of the stress P = P' R^T (doc/theory.md
+       * section 1.8): the loop is the straight one but for F's start. */
+      std::vector<double> frames;
       /** A CellState: not active once the cell has broken (sudden) or
        * been eroded; it then carries no force. */
       std::vector<unsigned char> failed;
@@ -171,7 +222,42 @@ namespace YarnImpact
       {
         return failed.size();
       }
+
+      /**
+       * Give cell @p c (whose gradients and JxW are stored) the fibre
+       * frames @p R of its Gauss points: stores them and turns its shape
+       * gradients into the frames (see #frames). Cells before @p c that
+       * have no frame yet get that of e_x, the identity; once one cell
+       * has frames, every cell must (the force loop reads them by cell
+       * index), so a caller orients each cell it adds after this call.
+       */
+      void
+      set_fibre_frames(const unsigned int c,
+                       const Mechanics::FibreFrame (&R)[n_q]);
     };
+
+    /** The deformation gradient of Gauss point @p q of cell @p c at the
+     * nodal displacements @p u [m], in the point's fibre frame when the
+     * cells have frames (F R, the laws' argument), F otherwise. */
+    inline void
+    cell_deformation_gradient(const CellData &cells,
+                              const unsigned int c,
+                              const unsigned int q,
+                              const double *u,
+                              Mechanics::Matrix3 &F)
+    {
+      double g[n_nodes * 3];
+      gather_gradients(&cells.grads[c * grad_size], q, g);
+      if (cells.frames.empty())
+        {
+          deformation_gradient(u, g, F);
+          return;
+        }
+      Mechanics::FibreFrame R;
+      for (unsigned int k = 0; k < 9; ++k)
+        R[k] = cells.frames[c * frame_size + frame_index(q, k)];
+      deformation_gradient(u, g, R, F);
+    }
 
     /**
      * The variant of the cell kernel this process runs, for the run's

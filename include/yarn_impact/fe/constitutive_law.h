@@ -26,7 +26,9 @@ namespace YarnImpact
      * - `double stress(const Matrix3 &F, Matrix3 &P, Invariants &inv)`
      *   (Matrix3 and Invariants of mechanics/kinematics.h):
      *   the first Piola-Kirchhoff stress P [Pa] (row-major) at the
-     *   deformation gradient F (row-major, fibre direction x), returning
+     *   deformation gradient F (row-major, fibre direction x: a law is
+     *   written in its fibre frame, and oriented_stress() turns it to any
+     *   fibre direction), returning
      *   the strain-energy density W [J/m^3]. It must fill
      *   `inv.elongation` = ln(lambda_f), which the failure test and the
      *   strain outputs use; `inv.compaction` feeds transverse_modulus().
@@ -106,6 +108,31 @@ namespace YarnImpact
       static_assert(std::is_copy_constructible_v<Law>,
                     "a law must be copyable");
       return true;
+    }
+
+    /**
+     * The stress of @p law with its fibres along the first axis of the
+     * fibre frame @p R (Mechanics::fibre_frame()) at the deformation
+     * gradient @p F (row-major): the law evaluated in its frame at F R,
+     * turned back, P = P'(F R) R^T [Pa] (doc/theory.md section 1.8).
+     * Returns W [J/m^3] and fills @p inv as the law's stress() does. The
+     * scalar path for a fibre direction at any angle; the force loop
+     * does the same with the shape gradients stored in the frames
+     * (CellData::frames).
+     */
+    template <class Law>
+    double
+    oriented_stress(const Law &law,
+                    const Mechanics::Matrix3 &F,
+                    const Mechanics::FibreFrame &R,
+                    Mechanics::Matrix3 &P,
+                    Mechanics::Invariants &inv)
+    {
+      Mechanics::Matrix3 F_frame, P_frame;
+      Mechanics::to_fibre_frame(F, R, F_frame);
+      const double W = law.stress(F_frame, P_frame, inv);
+      Mechanics::from_fibre_frame(P_frame, R, P);
+      return W;
     }
 
     /**

@@ -122,6 +122,14 @@ namespace YarnImpact
        * node the fibres' share of the axial stiffness (doc/hybrid.md
        * section 3.3). Empty: 1. */
       std::function<double(const double *)> section_quadrature_factor;
+      /** Set by a model whose yarns are curved, never by a `.prm`: the unit
+       * fibre direction M(X) [-] (written to the second argument) at a
+       * reference point X = (x, y, z) [m], given to every Gauss point as
+       * its fibre frame (CellData::frames, doc/theory.md section 1.8).
+       * Empty: M = e_x everywhere, the straight yarn, and the force loop's
+       * straight path. A cell's crack band width and the stable step's
+       * fibre axis are then measured along its mean fibre direction. */
+      std::function<void(const double *, double *)> fibre_direction;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

@@ -30,24 +30,10 @@ namespace YarnImpact
     } // namespace BoundaryIds
 
     /**
-     * The elliptical section in the (y, z) plane, as a 2D mesh whose first
-     * coordinate is y (thickness semi-axis a_y) and second is z (width
-     * semi-axis a_z): `GridGenerator::hyper_ball_balanced` (12 cells),
-     * refined @p refinements times on the unit disk with its manifolds, then
-     * scaled to the ellipse. For quarter symmetry only the cells with z >= 0
-     * are kept. With @p preserve_area the mesh is then scaled about the
-     * centre so that its area is exactly that of the (half) ellipse.
-     */
-    void
-    create_yarn_section(dealii::Triangulation<2, 2> &section,
-                        const double a_y,
-                        const double a_z,
-                        const unsigned int refinements,
-                        const bool half_section,
-                        const bool preserve_area);
-
-    /**
-     * The yarn: the section extruded along x over [-L/2, L/2] (symmetry
+     * The yarn: the section of create_yarn_section() (core/yarn_section.h)
+     * in the (y, z) plane, y along the thickness semi-axis a_y and z along
+     * the width semi-axis a_z (for quarter symmetry only the cells with
+     * z >= 0), extruded along x over [-L/2, L/2] (symmetry
      * none) or [0, L/2] (half, quarter) with @p n_axial_cells over the whole
      * length, boundary ids of BoundaryIds set by position.
      */

@@ -20,8 +20,9 @@ namespace YarnImpact
     using Matrix3 = double[9];
 
     /** The three physical invariants of the Charmetant law (doc/theory.md
-     * section 1.2), fibre direction M = e_x. Every FE law fills at least
-     * the elongation, which drives the failure test. */
+     * section 1.2), with the fibre direction M = e_x or, through a
+     * FibreFrame, any other. Every FE law fills at least the elongation,
+     * which drives the failure test. */
     struct Invariants
     {
       /** Fibre elongation \f$I_e = \ln\lambda_f\f$ [-]. */
@@ -38,6 +39,35 @@ namespace YarnImpact
      * 1.4. */
     Invariants
     invariants(const Matrix3 &F);
+
+    /**
+     * The fibre frame of a reference point: the orthonormal basis
+     * (M, T1, T2) of the reference configuration, M the unit fibre
+     * direction and T1, T2 spanning the section plane across it, stored as
+     * the columns of the rotation R (row-major, R[3 i + j] = component i
+     * of basis vector j). The laws are written in this frame, where the
+     * fibre lies along its first axis; a law with fibre direction M
+     * evaluates them at F R and returns P = P' R^T (doc/theory.md section
+     * 1.8). Built by fibre_frame() from M alone.
+     */
+    using FibreFrame = Matrix3;
+
+    /**
+     * The fibre frame of the unit fibre direction @p M [-]: T1 is the
+     * coordinate axis on which M has its smallest component (the first
+     * such one), made orthogonal to M and unit, and T2 = M x T1. The laws
+     * are transversely isotropic, so which pair spans the section plane
+     * does not change their stress beyond round-off. The frame of e_x is
+     * the identity exactly, so the straight yarn's numbers are the same on
+     * either path.
+     */
+    void
+    fibre_frame(const double (&M)[3], FibreFrame &R);
+
+    /** The invariants of @p F (row-major) with the fibre frame @p R:
+     * those of F R with the fibre along x (doc/theory.md section 1.8). */
+    Invariants
+    invariants(const Matrix3 &F, const FibreFrame &R);
 
     // Double4 results are returned by value from inline functions: GCC's
     // ABI note about AVX vectors does not apply.
@@ -84,6 +114,31 @@ namespace YarnImpact
             F[3 * i] * S[j] + F[3 * i + 1] * S[3 + j] + F[3 * i + 2] * S[6 + j];
     }
 #pragma GCC diagnostic pop
+
+    /** F R [-]: the deformation gradient @p F with the reference
+     * configuration expressed in the fibre frame @p R, the argument of a
+     * law written with its fibre along x (doc/theory.md section 1.8). */
+    inline void
+    to_fibre_frame(const Matrix3 &F, const FibreFrame &R, Matrix3 &FR)
+    {
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          FR[3 * i + j] =
+            F[3 * i] * R[j] + F[3 * i + 1] * R[3 + j] + F[3 * i + 2] * R[6 + j];
+    }
+
+    /** P = P' R^T [Pa]: a first Piola-Kirchhoff stress @p P_frame of a law
+     * evaluated in the fibre frame @p R, back in the reference
+     * configuration's axes. */
+    inline void
+    from_fibre_frame(const Matrix3 &P_frame, const FibreFrame &R, Matrix3 &P)
+    {
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          P[3 * i + j] = P_frame[3 * i] * R[3 * j] +
+                         P_frame[3 * i + 1] * R[3 * j + 1] +
+                         P_frame[3 * i + 2] * R[3 * j + 2];
+    }
   } // namespace Mechanics
 } // namespace YarnImpact
 
