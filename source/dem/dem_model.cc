@@ -15,6 +15,7 @@
 #include <yarn_impact/dem/list_check.h>
 #include <yarn_impact/dem/neighbour_lists.h>
 #include <yarn_impact/dem/observables.h>
+#include <yarn_impact/dem/phase_timer.h>
 #include <yarn_impact/dem/spheres.h>
 #include <yarn_impact/dem/stable_step.h>
 
@@ -86,13 +87,18 @@ namespace YarnImpact
         void
         drift(const double dt) override
         {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::integration);
           internal::drift(chains, decomposition, lists, spheres, dt);
         }
 
         Observables
         observables() const override
         {
-          return meter.measure(projectile_contact, dissipated_local);
+          Observables o = meter.measure(projectile_contact, dissipated_local);
+          // The timing table's phases (counts of the whole yarn, alike on
+          // every rank).
+          phase_timer.advance_to(o.cut_through ? 3 : o.n_failed > 0 ? 2 : 0);
+          return o;
         }
 
         AxialProperties
@@ -227,6 +233,10 @@ namespace YarnImpact
         ProjectileContactState projectile_contact;
         /** Energy dissipated on this rank so far [J]. */
         double dissipated_local = 0.;
+        /** The parts of the step by phase (`Phase timing`); mutable: the
+         * const observables() and stable_time_step() are timed or move
+         * the phase on. */
+        mutable PhaseTimer phase_timer;
       };
 
 
@@ -263,6 +273,7 @@ namespace YarnImpact
                        projectile_constants)
         , failure(shared.yarn.failure)
         , failure_strain(shared.yarn.failure_strain)
+        , phase_timer(prm.phase_timing)
       {}
 
 
@@ -272,6 +283,7 @@ namespace YarnImpact
         double critical = critical_step;
         if (prm.stable_step == StableStep::contacts)
           {
+            PhaseTimer::Scope scope(phase_timer, PhaseTimer::stable_step);
             const double omega2 =
               contact_step.omega2_bound(decomposition,
                                         lists.blocks,
@@ -398,10 +410,14 @@ namespace YarnImpact
         // The global x-extent of every cross-section is identical on all
         // ranks, so a failure or a growth below is collective.
         const std::vector<double> *lo_x = nullptr, *hi_x = nullptr;
-        decomposition.global_extents(spheres.st_xlo,
-                                     spheres.st_xhi,
-                                     lo_x,
-                                     hi_x);
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::communication);
+          decomposition.global_extents(spheres.st_xlo,
+                                       spheres.st_xhi,
+                                       lo_x,
+                                       hi_x);
+        }
+        PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_checks);
         check_symmetry_plane(chains, *lo_x);
         lists.grow_halos(*lo_x, *hi_x);
         if (!decomposition.grow_ghost_layers(*lo_x, *hi_x))
@@ -414,12 +430,21 @@ namespace YarnImpact
       void
       Model::update_lists(const bool check_criterion)
       {
-        const bool must_rebuild = lists.evaluate_criteria(check_criterion);
+        bool must_rebuild;
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_checks);
+          must_rebuild = lists.evaluate_criteria(check_criterion);
+        }
+        PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_rebuilds);
+        const unsigned long blocks0 = lists.n_rebuilds,
+                            rows0   = lists.rebuilt_rows;
         if (check_criterion &&
             prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
           list_check.rebuild_on_missed_contacts(lists, spheres.step_count);
         else
           lists.rebuild_failing(must_rebuild, check_criterion);
+        phase_timer.count_rebuilds(lists.n_rebuilds - blocks0,
+                                   lists.rebuilt_rows - rows0);
       }
 
 
@@ -428,63 +453,91 @@ namespace YarnImpact
       {
         projectile_speed = std::abs(projectile.velocity());
         ++spheres.step_count;
-        decomposition.exchange_ghosts(spheres.pos);
-        decomposition.exchange_ghosts(spheres.vel);
-        lists.accumulate_ghost_criteria();
+        phase_timer.count_step(dt);
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::communication);
+          decomposition.exchange_ghosts(spheres.pos);
+          decomposition.exchange_ghosts(spheres.vel);
+        }
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_checks);
+          lists.accumulate_ghost_criteria();
+        }
         if (check_locality())
           {
             // New ghost cross-sections: fetch them; every block is stale.
+            PhaseTimer::Scope scope(phase_timer, PhaseTimer::communication);
             decomposition.exchange_ghosts(spheres.pos);
             decomposition.exchange_ghosts(spheres.vel);
           }
         update_lists(true);
         if (prm.check_lists)
-          list_check.check(lists, spheres.step_count);
+          {
+            PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_checks);
+            list_check.check(lists, spheres.step_count);
+          }
 
-        clear_forces(decomposition, spheres);
         const double *x = spheres.pos.data();
         const double *v = spheres.vel.data();
         double *F       = spheres.frc.data();
         // The energy dissipated in this evaluation, summed in this order.
         double dissipated = 0.;
-        truss_forces(chains,
-                     decomposition,
-                     failure,
-                     failure_strain,
-                     x,
-                     F,
-                     spheres.broken.data(),
-                     dissipated);
-        fibre_contact_forces(lists.blocks,
-                             fibre_law,
-                             chains.d,
-                             decomposition,
-                             x,
-                             v,
-                             F,
-                             dt,
-                             dissipated);
-        mirror_contact_forces(lists.blocks,
-                              fibre_law,
-                              chains.d,
-                              decomposition,
-                              x,
-                              v,
-                              F,
-                              dt,
-                              dissipated);
-        double reaction = projectile_contact_forces(projectile,
-                                                    projectile_law,
-                                                    projectile_constants,
-                                                    chains,
-                                                    decomposition,
-                                                    spheres,
-                                                    dt,
-                                                    projectile_contact,
-                                                    dissipated);
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::trusses);
+          clear_forces(decomposition, spheres);
+          truss_forces(chains,
+                       decomposition,
+                       failure,
+                       failure_strain,
+                       x,
+                       F,
+                       spheres.broken.data(),
+                       dissipated);
+        }
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::pair_contacts);
+          fibre_contact_forces(lists.blocks,
+                               fibre_law,
+                               chains.d,
+                               decomposition,
+                               x,
+                               v,
+                               F,
+                               dt,
+                               dissipated);
+          mirror_contact_forces(lists.blocks,
+                                fibre_law,
+                                chains.d,
+                                decomposition,
+                                x,
+                                v,
+                                F,
+                                dt,
+                                dissipated);
+        }
+        double reaction;
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::projectile_contact);
+          reaction = projectile_contact_forces(projectile,
+                                               projectile_law,
+                                               projectile_constants,
+                                               chains,
+                                               decomposition,
+                                               spheres,
+                                               dt,
+                                               projectile_contact,
+                                               dissipated);
+        }
         dissipated_local += dissipated;
         if (decomposition.n_ranks > 1)
-          reaction = dealii::Utilities::MPI::sum(reaction, decomposition.comm);
+          {
+            PhaseTimer::Scope scope(phase_timer, PhaseTimer::communication);
+            reaction =
+              dealii::Utilities::MPI::sum(reaction, decomposition.comm);
+          }
+        // The first contact, on every rank alike (the reaction is reduced).
+        if (reaction != 0.)
+          phase_timer.advance_to(1);
         return chains.factor * reaction;
       }
 
@@ -494,31 +547,11 @@ namespace YarnImpact
       {
         const MPI_Comm comm = decomposition.comm;
         std::ostringstream s;
-        const char *separator = "";
-        if (prm.check_lists)
+        s << list_check.remarks(lists, spheres.step_count);
+        const char *separator = (s.tellp() > 0 ? "\n  " : "");
+        if (phase_timer.enabled)
           {
-            // Collective: the contacts of every rank, a pair across a
-            // rank boundary half on each.
-            const double n[2] = {
-              dealii::Utilities::MPI::sum(list_check.checked_contacts, comm),
-              dealii::Utilities::MPI::sum(list_check.checked_mirror_contacts,
-                                          comm)};
-            s << "neighbour lists checked at " << spheres.step_count
-              << " force evaluations: " << std::llround(n[0])
-              << " contacts and " << std::llround(n[1])
-              << " mirror-image contacts (summed over the evaluations), "
-                 "all listed";
-            separator = "\n  ";
-          }
-        if (prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
-          {
-            // Collective: the block rebuilds of all ranks.
-            const unsigned long n =
-              dealii::Utilities::MPI::sum(lists.n_rebuilds, comm);
-            s << separator
-              << "neighbour-list blocks rebuilt only for missed contacts: " << n
-              << " block rebuilds (all ranks) in " << spheres.step_count
-              << " force evaluations";
+            s << separator << phase_timer.report(comm);
             separator = "\n  ";
           }
         const unsigned int n_ranks = decomposition.n_ranks;
