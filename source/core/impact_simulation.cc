@@ -71,9 +71,9 @@ namespace YarnImpact
   void
   ImpactSimulation::Implementation::write_fibre_breaks() const
   {
-    if (!model->records_fibre_breaks())
+    const std::optional<std::vector<FibreBreak>> breaks = model->fibre_breaks();
+    if (!breaks)
       return;
-    const std::vector<FibreBreak> breaks = model->fibre_breaks();
     collective_output(communicator, [&] {
       if (is_root)
         {
@@ -83,7 +83,7 @@ namespace YarnImpact
           o << "time [us],part,fibre,reference x [mm],reference y [mm],"
                "reference z [mm]\n"
             << std::setprecision(10);
-          for (const FibreBreak &b : breaks)
+          for (const FibreBreak &b : *breaks)
             o << b.time * 1e6 << ',' << b.part << ',' << b.fibre << ','
               << b.x * 1e3 << ',' << b.y * 1e3 << ',' << b.z * 1e3 << '\n';
           csv.commit();

@@ -207,20 +207,14 @@ namespace YarnImpact
             bars.load_state(in);
         }
 
-        bool
-        records_fibre_breaks() const override
-        {
-          return true;
-        }
-
         /** The DEM parts' broken trusses (part "dem", and "clamp" for the
          * DEM part at the clamp) and the broken fibre bars ("bars"). */
-        std::vector<FibreBreak>
+        std::optional<std::vector<FibreBreak>>
         fibre_breaks() const override
         {
-          std::vector<FibreBreak> breaks = dem_model->fibre_breaks();
+          std::vector<FibreBreak> breaks = *dem_model->fibre_breaks();
           if (clamp_model)
-            for (FibreBreak b : clamp_model->fibre_breaks())
+            for (FibreBreak b : *clamp_model->fibre_breaks())
               {
                 b.part = "clamp";
                 breaks.push_back(b);

@@ -250,6 +250,21 @@ namespace YarnImpact
                          "Time/Safety factor, or the contact stiffness "
                          "ratios of subsection DEM");
       }
+
+
+      std::string
+      Decomposition::remarks() const
+      {
+        if (n_ranks == 1)
+          return {};
+        std::ostringstream s;
+        s << "MPI ghost layers grew " << n_ghost_growths
+          << " times; cross-sections below/above each slab at the end:";
+        for (unsigned int q = 0; q < n_ranks; ++q)
+          s << " rank " << q << " " << slab_begin(q) - ghost_lo[q] << "/"
+            << ghost_hi[q] - slab_begin(q + 1);
+        return s.str();
+      }
     } // namespace internal
   }   // namespace DEM
 } // namespace YarnImpact

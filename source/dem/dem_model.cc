@@ -15,6 +15,7 @@
 #include <yarn_impact/dem/list_check.h>
 #include <yarn_impact/dem/neighbour_lists.h>
 #include <yarn_impact/dem/observables.h>
+#include <yarn_impact/dem/phase_timer.h>
 #include <yarn_impact/dem/spheres.h>
 #include <yarn_impact/dem/stable_step.h>
 
@@ -86,6 +87,7 @@ namespace YarnImpact
         void
         drift(const double dt) override
         {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::integration);
           internal::drift(chains, decomposition, lists, spheres, dt);
           spheres.time += dt;
         }
@@ -93,7 +95,11 @@ namespace YarnImpact
         Observables
         observables() const override
         {
-          return meter.measure(projectile_contact);
+          Observables o = meter.measure(projectile_contact);
+          // The timing table's phases (counts of the whole yarn, alike on
+          // every rank).
+          phase_timer.advance_to(o.cut_through ? 3 : o.n_failed > 0 ? 2 : 0);
+          return o;
         }
 
         AxialProperties
@@ -158,13 +164,7 @@ namespace YarnImpact
           return lists.statistics(spheres.step_count);
         }
 
-        bool
-        records_fibre_breaks() const override
-        {
-          return true;
-        }
-
-        std::vector<FibreBreak>
+        std::optional<std::vector<FibreBreak>>
         fibre_breaks() const override
         {
           return gather_fibre_breaks(chains, decomposition, spheres);
@@ -236,6 +236,10 @@ namespace YarnImpact
 
         /** Where the projectile was at the last force evaluation. */
         ProjectileContactState projectile_contact;
+        /** The parts of the step by phase (`Phase timing`); mutable: the
+         * const observables() and stable_time_step() are timed or move
+         * the phase on. */
+        mutable PhaseTimer phase_timer;
       };
 
 
@@ -272,6 +276,7 @@ namespace YarnImpact
                        projectile_constants)
         , failure(shared.yarn.failure)
         , failure_strain(shared.yarn.failure_strain)
+        , phase_timer(prm.phase_timing)
       {}
 
 
@@ -281,6 +286,7 @@ namespace YarnImpact
         double critical = critical_step;
         if (prm.stable_step == StableStep::contacts)
           {
+            PhaseTimer::Scope scope(phase_timer, PhaseTimer::stable_step);
             const double omega2 =
               contact_step.omega2_bound(decomposition,
                                         lists.blocks,
@@ -409,10 +415,14 @@ namespace YarnImpact
         // The global x-extent of every cross-section is identical on all
         // ranks, so a failure or a growth below is collective.
         const std::vector<double> *lo_x = nullptr, *hi_x = nullptr;
-        decomposition.global_extents(spheres.st_xlo,
-                                     spheres.st_xhi,
-                                     lo_x,
-                                     hi_x);
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::communication);
+          decomposition.global_extents(spheres.st_xlo,
+                                       spheres.st_xhi,
+                                       lo_x,
+                                       hi_x);
+        }
+        PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_checks);
         check_symmetry_plane(chains, *lo_x);
         lists.grow_halos(*lo_x, *hi_x);
         if (!decomposition.grow_ghost_layers(*lo_x, *hi_x))
@@ -425,12 +435,21 @@ namespace YarnImpact
       void
       Model::update_lists(const bool check_criterion)
       {
-        const bool must_rebuild = lists.evaluate_criteria(check_criterion);
+        bool must_rebuild;
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_checks);
+          must_rebuild = lists.evaluate_criteria(check_criterion);
+        }
+        PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_rebuilds);
+        const unsigned long blocks0 = lists.n_rebuilds,
+                            rows0   = lists.rebuilt_rows;
         if (check_criterion &&
             prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
           list_check.rebuild_on_missed_contacts(lists, spheres.step_count);
         else
           lists.rebuild_failing(must_rebuild, check_criterion);
+        phase_timer.count_rebuilds(lists.n_rebuilds - blocks0,
+                                   lists.rebuilt_rows - rows0);
       }
 
 
@@ -439,63 +458,91 @@ namespace YarnImpact
       {
         projectile_speed = std::abs(projectile.velocity());
         ++spheres.step_count;
-        decomposition.exchange_ghosts(spheres.pos);
-        decomposition.exchange_ghosts(spheres.vel);
-        lists.accumulate_ghost_criteria();
+        phase_timer.count_step(dt);
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::communication);
+          decomposition.exchange_ghosts(spheres.pos);
+          decomposition.exchange_ghosts(spheres.vel);
+        }
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_checks);
+          lists.accumulate_ghost_criteria();
+        }
         if (check_locality())
           {
             // New ghost cross-sections: fetch them; every block is stale.
+            PhaseTimer::Scope scope(phase_timer, PhaseTimer::communication);
             decomposition.exchange_ghosts(spheres.pos);
             decomposition.exchange_ghosts(spheres.vel);
           }
         update_lists(true);
         if (prm.check_lists)
-          list_check.check(lists, spheres.step_count);
+          {
+            PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_checks);
+            list_check.check(lists, spheres.step_count);
+          }
 
-        clear_forces(decomposition, spheres);
         const double *x = spheres.pos.data();
         const double *v = spheres.vel.data();
         double *F       = spheres.frc.data();
         // The energy dissipated, added to each sphere's account.
         double *dissipated = spheres.dissipated.data();
-        truss_forces(chains,
-                     decomposition,
-                     failure,
-                     failure_strain,
-                     x,
-                     F,
-                     spheres.broken.data(),
-                     spheres.time,
-                     spheres.break_time.data(),
-                     dissipated);
-        fibre_contact_forces(lists.blocks,
-                             fibre_law,
-                             chains.d,
-                             decomposition,
-                             x,
-                             v,
-                             F,
-                             dt,
-                             dissipated);
-        mirror_contact_forces(lists.blocks,
-                              fibre_law,
-                              chains.d,
-                              decomposition,
-                              x,
-                              v,
-                              F,
-                              dt,
-                              dissipated);
-        double reaction = projectile_contact_forces(projectile,
-                                                    projectile_law,
-                                                    projectile_constants,
-                                                    chains,
-                                                    decomposition,
-                                                    spheres,
-                                                    dt,
-                                                    projectile_contact);
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::trusses);
+          clear_forces(decomposition, spheres);
+          truss_forces(chains,
+                       decomposition,
+                       failure,
+                       failure_strain,
+                       x,
+                       F,
+                       spheres.broken.data(),
+                       spheres.time,
+                       spheres.break_time.data(),
+                       dissipated);
+        }
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::pair_contacts);
+          fibre_contact_forces(lists.blocks,
+                               fibre_law,
+                               chains.d,
+                               decomposition,
+                               x,
+                               v,
+                               F,
+                               dt,
+                               dissipated);
+          mirror_contact_forces(lists.blocks,
+                                fibre_law,
+                                chains.d,
+                                decomposition,
+                                x,
+                                v,
+                                F,
+                                dt,
+                                dissipated);
+        }
+        double reaction;
+        {
+          PhaseTimer::Scope scope(phase_timer, PhaseTimer::projectile_contact);
+          reaction = projectile_contact_forces(projectile,
+                                               projectile_law,
+                                               projectile_constants,
+                                               chains,
+                                               decomposition,
+                                               spheres,
+                                               dt,
+                                               projectile_contact);
+        }
         if (decomposition.n_ranks > 1)
-          reaction = dealii::Utilities::MPI::sum(reaction, decomposition.comm);
+          {
+            PhaseTimer::Scope scope(phase_timer, PhaseTimer::communication);
+            reaction =
+              dealii::Utilities::MPI::sum(reaction, decomposition.comm);
+          }
+        // The first contact, on every rank alike (the reaction is reduced).
+        if (reaction != 0.)
+          phase_timer.advance_to(1);
         return chains.factor * reaction;
       }
 
@@ -505,43 +552,16 @@ namespace YarnImpact
       {
         const MPI_Comm comm = decomposition.comm;
         std::ostringstream s;
-        const char *separator = "";
-        if (prm.check_lists)
+        s << list_check.remarks(lists, spheres.step_count);
+        const char *separator = (s.tellp() > 0 ? "\n  " : "");
+        if (phase_timer.enabled)
           {
-            // Collective: the contacts of every rank, a pair across a
-            // rank boundary half on each.
-            const double n[2] = {
-              dealii::Utilities::MPI::sum(list_check.checked_contacts, comm),
-              dealii::Utilities::MPI::sum(list_check.checked_mirror_contacts,
-                                          comm)};
-            s << "neighbour lists checked at " << spheres.step_count
-              << " force evaluations: " << std::llround(n[0])
-              << " contacts and " << std::llround(n[1])
-              << " mirror-image contacts (summed over the evaluations), "
-                 "all listed";
+            s << separator << phase_timer.report(comm);
             separator = "\n  ";
           }
-        if (prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
-          {
-            // Collective: the block rebuilds of all ranks.
-            const unsigned long n =
-              dealii::Utilities::MPI::sum(lists.n_rebuilds, comm);
-            s << separator
-              << "neighbour-list blocks rebuilt only for missed contacts: " << n
-              << " block rebuilds (all ranks) in " << spheres.step_count
-              << " force evaluations";
-            separator = "\n  ";
-          }
-        const unsigned int n_ranks = decomposition.n_ranks;
-        if (n_ranks == 1)
-          return s.str();
-        s << separator << "MPI ghost layers grew "
-          << decomposition.n_ghost_growths
-          << " times; cross-sections below/above each slab at the end:";
-        for (unsigned int q = 0; q < n_ranks; ++q)
-          s << " rank " << q << " "
-            << decomposition.slab_begin(q) - decomposition.ghost_lo[q] << "/"
-            << decomposition.ghost_hi[q] - decomposition.slab_begin(q + 1);
+        const std::string ghosts = decomposition.remarks();
+        if (!ghosts.empty())
+          s << separator << ghosts;
         return s.str();
       }
     } // namespace

@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -26,6 +27,41 @@ namespace YarnImpact
         , decomposition(decomposition)
         , pos(pos)
       {}
+
+
+      std::string
+      ListCheck::remarks(const NeighbourLists &lists,
+                         const std::uint64_t step_count) const
+      {
+        const MPI_Comm comm = decomposition.comm;
+        std::ostringstream s;
+        const char *separator = "";
+        if (prm.check_lists)
+          {
+            // Collective: the contacts of every rank, a pair across a
+            // rank boundary half on each.
+            const double n[2] = {
+              dealii::Utilities::MPI::sum(checked_contacts, comm),
+              dealii::Utilities::MPI::sum(checked_mirror_contacts, comm)};
+            s << "neighbour lists checked at " << step_count
+              << " force evaluations: " << std::llround(n[0])
+              << " contacts and " << std::llround(n[1])
+              << " mirror-image contacts (summed over the evaluations), "
+                 "all listed";
+            separator = "\n  ";
+          }
+        if (prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
+          {
+            // Collective: the block rebuilds of all ranks.
+            const unsigned long n =
+              dealii::Utilities::MPI::sum(lists.n_rebuilds, comm);
+            s << separator
+              << "neighbour-list blocks rebuilt only for missed contacts: " << n
+              << " block rebuilds (all ranks) in " << step_count
+              << " force evaluations";
+          }
+        return s.str();
+      }
 
 
       void

@@ -171,6 +171,17 @@ namespace YarnImpact
                         "compares each sphere with every sphere less than a "
                         "diameter away along the yarn, so a run takes 3 "
                         "times as long with 40 fibres and 25 times with 400.");
+      prm.declare_entry("Phase timing",
+                        "false",
+                        Patterns::Bool(),
+                        "Time the parts of the DEM step (trusses, pair "
+                        "contacts, projectile, list checks and rebuilds, "
+                        "communication, integration, stable step) in the "
+                        "four phases of an impact (before contact, to the "
+                        "first broken truss, to the cut, after it) and "
+                        "print them, with the rebuild counts, in the run "
+                        "summary. The phases change at history rows. Only "
+                        "the summary depends on it.");
       prm.declare_entry("List rebuilds",
                         "criterion",
                         Patterns::Selection("criterion|missed contact"),
@@ -250,6 +261,7 @@ namespace YarnImpact
               "DEM/Joint rebuild fraction",
               "must be in (0, 1]");
       check_lists   = prm.get_bool("Check lists");
+      phase_timing  = prm.get_bool("Phase timing");
       list_rebuilds = (prm.get("List rebuilds") == "missed contact"
                          ? ListRebuilds::missed_contact
                          : ListRebuilds::criterion);

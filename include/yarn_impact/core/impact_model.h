@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -168,20 +169,13 @@ namespace YarnImpact
     virtual void
     load_state(Checkpoint::Reader &in) = 0;
 
-    /** Whether the model records its fibre breaks (fibre_breaks()); the
-     * run then writes them to `breaks_<name>.csv`. */
-    virtual bool
-    records_fibre_breaks() const
-    {
-      return false;
-    }
-
     /** Every fibre break so far, in the order of break_less(), the same on
-     * every rank (collective). Only called if records_fibre_breaks(). */
-    virtual std::vector<FibreBreak>
+     * every rank, if the model records them (the run then writes them to
+     * `breaks_<name>.csv`); none by default (collective). */
+    virtual std::optional<std::vector<FibreBreak>>
     fibre_breaks() const
     {
-      return {};
+      return std::nullopt;
     }
 
     /** Model-specific remarks for the run summary (e.g. how the DEM's MPI

@@ -8,6 +8,7 @@
 #include <mpi.h>
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace YarnImpact
@@ -122,6 +123,11 @@ namespace YarnImpact
         std::vector<unsigned int> ghost_lo, ghost_hi;
         /** How often the ghost layers grew. */
         unsigned long n_ghost_growths = 0;
+
+        /** How the ghost layers grew, for the run summary (empty on one
+         * rank): the growths and each slab's layers at the end. */
+        std::string
+        remarks() const;
 
         /** Write the ghost layers (what moves during a run) to a
          * checkpoint (dem/checkpoint.cc). */

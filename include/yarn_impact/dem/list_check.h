@@ -8,6 +8,7 @@
 #include <yarn_impact/dem/parameters.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace YarnImpact
@@ -53,6 +54,14 @@ namespace YarnImpact
         void
         rebuild_on_missed_contacts(NeighbourLists &lists,
                                    const std::uint64_t step_count);
+
+        /** The lines of the run summary on what check() saw and, with
+         * `List rebuilds = missed contact`, the block rebuilds of @p lists
+         * over @p step_count force evaluations; empty when neither is on
+         * (collective). */
+        std::string
+        remarks(const NeighbourLists &lists,
+                const std::uint64_t step_count) const;
 
         /** Contacts (pair-steps, weighted like the energies) and mirror
          * contacts seen by check() [-]. */

@@ -107,6 +107,11 @@ namespace YarnImpact
        * missing pair stops the run. For tests: the sweep makes a run 3
        * (40 fibres) to 25 (400 fibres) times as long. */
       bool check_lists = false;
+      /** Time the parts of the step in the four phases of an impact
+       * (before contact, to the first break, to the cut, after it) and
+       * print the table in the run summary (dem/phase_timer.h). Off by
+       * default: the summary then holds no wall times. */
+      bool phase_timing = false;
       /** When a neighbour-list block is rebuilt (doc/dem.md section 4). */
       enum class ListRebuilds
       {
