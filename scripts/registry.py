@@ -406,7 +406,11 @@ def record(args):
             prefix += "."
         q = EXTRACTORS[kind](*params)
         quantities.update({prefix + k: v for k, v in q.items()})
-    dirty = [line[3:] for line in git("status", "--porcelain").splitlines()
+    # Not stripped: each porcelain line starts with its two status columns,
+    # blank ones included. The registry's own files do not count.
+    status = subprocess.run(["git", "-C", ROOT, "status", "--porcelain"],
+                            capture_output=True, text=True).stdout
+    dirty = [line[3:] for line in status.splitlines()
              if line[3:] and not line[3:].startswith("doc/results/")]
     entry = {
         "case": args.case,
