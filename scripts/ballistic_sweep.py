@@ -1,18 +1,22 @@
 #!/usr/bin/python3
 """Ballistic answers in one command: a velocity sweep of the FE (Charmetant
-and linear laws) and the DEM, each model's critical velocity by bisection,
-Smith's critical velocity, a CSV and plots (doc/ballistics.md).
+and linear laws), the DEM and the hybrid yarn, each model's critical
+velocity by bisection, Smith's critical velocity, a CSV and plots
+(doc/ballistics.md).
 
 Usage:
   python3 scripts/ballistic_sweep.py [--build build] [--out results/ballistics]
       [--np 2] [--models charmetant,linear,dem]
       [--velocities 60,120,200,300,450,600,800,1000,1200]
-      [--dem-velocities 300,450,600,1000] [--tolerance 5]
+      [--dem-velocities 300,450,600,1000]
+      [--hybrid-velocities 300,450,600,1000] [--tolerance 5]
       [--dem-tolerance 10]
       [--no-bisection] [--plots-only]
 
 Each run is the paper's case (prm/km2_120ms_fe.prm, the linear law of
-prm/study/fe_linear.prm, prm/km2_120ms_dem.prm) at another impact velocity,
+prm/study/fe_linear.prm, prm/km2_120ms_dem.prm, and the hybrid yarn with
+fibre bars of prm/hybrid/km2_600ms_fibre_bars.prm, model `hybrid`, not in
+the default --models) at another impact velocity,
 without snapshots, stopping 2 us after the yarn is cut through or at 40 us.
 Runs already done (their summary.txt exists) are reused, so an interrupted
 sweep goes on where it stopped: a run's folder is named after its exact
@@ -63,9 +67,12 @@ MODELS = {
                "subsection FE\n  set Constitutive law = Linear transversely "
                "isotropic\nend\n"),
     "dem": ("dem", "prm/km2_120ms_dem.prm", ""),
+    "hybrid": ("hybrid", "prm/hybrid/km2_600ms_fibre_bars.prm", ""),
 }
 LABELS = {"charmetant": "FE, Charmetant law", "linear": "FE, linear TI law",
-          "dem": "DEM"}
+          "dem": "DEM", "hybrid": "hybrid, DEM |x| <= 4.89 mm, fibre bars"}
+# The models run on MPI ranks (--np); the FE runs on one.
+PARALLEL_KINDS = ("dem", "hybrid")
 
 
 def smith_critical_velocity(eps=FAILURE_STRAIN, E=FIBRE_MODULUS, rho=DENSITY):
@@ -162,7 +169,7 @@ def run_case(args, model, velocity, end_time):
         except OSError as e:
             raise Failure("cannot write %s: %s" % (prm, e.strerror or e))
         command = [args.executable, prm]
-        if kind == "dem" and args.np > 1:
+        if kind in PARALLEL_KINDS and args.np > 1:
             command = ["mpirun", "-np", str(args.np)] + command
         start = time.time()
         env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
@@ -234,7 +241,8 @@ def bisect(args, model, results, t_r):
               and (lo is None or r["velocity"] > lo)), default=None)
     if lo is None or hi is None:
         return None, lo, hi
-    tolerance = args.dem_tolerance if model == "dem" else args.tolerance
+    tolerance = args.dem_tolerance if MODELS[model][0] in PARALLEL_KINDS \
+        else args.tolerance
     while hi - lo > tolerance:
         mid = 0.5 * (lo + hi)
         # Only whether the yarn is cut before t_r matters here.
@@ -258,7 +266,8 @@ def plot(args, table, critical, smith):
                    "energy_absorbed"),
                   ("first_break", "time of first break [us]", "first_break"),
                   ("cut_through", "time of cut-through [us]", "cut_through")]
-    styles = {"charmetant": "o-", "linear": "s--", "dem": "^-"}
+    styles = {"charmetant": "o-", "linear": "s--", "dem": "^-",
+              "hybrid": "v:"}
     for key, label, file in quantities:
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
         for model, rows in table.items():
@@ -378,6 +387,8 @@ def main():
     # Fewer DEM points, each minutes long (doc/ballistics.md).
     p.add_argument("--dem-velocities", type=velocity_list,
                    default="300,450,600,1000")
+    p.add_argument("--hybrid-velocities", type=velocity_list,
+                   default="300,450,600,1000")
     p.add_argument("--end-time", type=positive(float), default=40e-6)
     p.add_argument("--tolerance", type=positive(float), default=5.)
     p.add_argument("--dem-tolerance", type=positive(float), default=10.)
@@ -392,7 +403,9 @@ def main():
     start = time.time()
     table, critical = {}, {}
     for model in args.models:
-        velocities = args.dem_velocities if model == "dem" else args.velocities
+        velocities = {"dem": args.dem_velocities,
+                      "hybrid": args.hybrid_velocities}.get(model,
+                                                           args.velocities)
         results = [run_case(args, model, v, args.end_time)
                    for v in velocities]
         table[model] = results

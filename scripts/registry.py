@@ -29,6 +29,11 @@ and the quantities that the extractor KIND reads from the run's outputs:
                           --expect (test identification/synthetic_recovery)
   segment_length LOG      the differences printed by the test
                           dem/elementary_segment_length
+  sweep DIR               ballistics.csv and critical_velocities.csv of
+                          scripts/ballistic_sweep.py: per model and impact
+                          velocity V (its dot as _), MODEL_V_residual,
+                          _absorbed, _first_break, _cut_through, _end;
+                          critical_MODEL and critical_smith
 
   registry.py show NAME   prints an entry
 """
@@ -385,7 +390,35 @@ def extract_fit(log):
     return q
 
 
+def extract_sweep(folder):
+    q = {}
+    def rows(name):
+        with open(os.path.join(folder, name)) as f:
+            return list(csv.DictReader(f))
+    for row in rows("ballistics.csv"):
+        key = "%s_%s" % (row["model"],
+                         ("%g" % float(row["impact velocity [m/s]"]))
+                         .replace(".", "_"))
+        for column, name in (("residual velocity [m/s]", "residual"),
+                             ("energy absorbed [mJ]", "absorbed"),
+                             ("first break [us]", "first_break"),
+                             ("cut through [us]", "cut_through"),
+                             ("end of run [us]", "end")):
+            v = number(row[column])
+            if v is not None:
+                q["%s_%s" % (key, name)] = v
+    for row in rows("critical_velocities.csv"):
+        model = "smith" if row["model"].startswith("Smith") else row["model"]
+        v = number(row["critical velocity [m/s]"])
+        if v is not None:
+            q["critical_" + model] = v
+    if not q:
+        raise SystemExit("registry.py: no sweep results in " + folder)
+    return q
+
+
 EXTRACTORS = {
+    "sweep": extract_sweep,
     "fit": extract_fit,
     "segment_length": extract_segment_length,
     "history": extract_history, "failure": extract_failure,
