@@ -34,6 +34,12 @@ and the quantities that the extractor KIND reads from the run's outputs:
                           velocity V (its dot as _), MODEL_V_residual,
                           _absorbed, _first_break, _cut_through, _end;
                           critical_MODEL and critical_smith
+  run DIR [LOG]           the history quantities of DIR, and the run's
+                          steps, its largest strain, the times its
+                          longitudinal and transverse fronts reach the
+                          clamp, the "window:" lines of its summary (the
+                          Smith checks) and, from the printed LOG, the
+                          set-up lines (mass, EA, stable steps, kernel)
 
   registry.py show NAME   prints an entry
 """
@@ -132,7 +138,7 @@ def extract_history(run):
             k = min(range(len(t)), key=lambda i: abs(t[i] - time))
             q["v_%gus" % time] = v[k]
     if "max longitudinal strain [-]" in h:
-        for time in (10, 20):
+        for time in (10, 20, 30):
             if time <= t[-1] + 1e-9:
                 k = min(range(len(t)), key=lambda i: abs(t[i] - time))
                 q["strain_max_%gus_pct" % time] = (
@@ -158,8 +164,9 @@ def extract_history(run):
                             if m else text)
     w = [x for ti, x in zip(t, h["section width at impact [mm]"])
          if ti <= 20.0 + 1e-6]
-    change = [100. * (x / w[0] - 1.) for x in w]
-    q["width_min_pct"], q["width_max_pct"] = min(change), max(change)
+    if w and w[0] > 0:  # a single fibre has no width
+        change = [100. * (x / w[0] - 1.) for x in w]
+        q["width_min_pct"], q["width_max_pct"] = min(change), max(change)
     # The spreading front over 0-20 us: in how many samples it is out of
     # the nose, and its farthest position.
     rows = [(ti, sf, tf) for ti, sf, tf in zip(
@@ -417,6 +424,53 @@ def extract_sweep(folder):
     return q
 
 
+def extract_run(run, log=None):
+    """A run folder: extract_history's quantities; the last step; the first
+    times the longitudinal front reaches the clamp (its largest position,
+    the half span) and the transverse front the last station before it
+    (within 3 % of the half span); every "window: NAME VALUE" line of the
+    summary as window_NAME (and window_fit_end_us where the fit stopped at
+    the clamp); with LOG, the printed set-up lines of an FE run."""
+    q = extract_history(run)
+    h = read_csv(history_file(run))
+    t = h["t [us]"]
+    q["steps"] = h["step"][-1]
+    if "max longitudinal strain [-]" in h:
+        q["strain_max_pct"] = 100. * max(h["max longitudinal strain [-]"])
+    half = max(h["longitudinal front [mm]"])
+    q["half_span_mm"] = half
+    for key, column, level in (
+            ("longitudinal_clamp_us", "longitudinal front [mm]", 1.0),
+            ("transverse_clamp_us", "transverse front [mm]", 0.97)):
+        hit = [ti for ti, x in zip(t, h[column]) if x >= level * half - 1e-9]
+        if hit:
+            q[key] = hit[0]
+    summary = os.path.join(run, "summary.txt")
+    for line in open(summary):
+        m = re.match(r"\s+window: (.+?)\s{2,}(\S+)", line)
+        if m and number(m.group(2)) is not None:
+            q["window_" + slug(m.group(1))] = number(m.group(2))
+        m = re.search(r"fitted up to ([\d.]+) us", line)
+        if m:
+            q["window_fit_end_us"] = float(m.group(1))
+    if log:
+        text = open(log).read()
+        for key, pattern in (
+                ("contact_step_ns", r"stable step of a surface node on it ([\d.]+) ns"),
+                ("mass_mg", r"yarn mass ([\d.]+) mg"),
+                ("mass_per_length_mg_m", r"mass per length ([\d.]+) mg/m"),
+                ("ea_n", r"EA ([\d.]+) N"),
+                ("stable_step_ns", r"stable time step ([\d.]+) ns"),
+                ("used_step_ns", r"stable time step [\d.]+ ns, used ([\d.]+) ns")):
+            m = re.search(pattern, text)
+            if m:
+                q[key] = float(m.group(1))
+        m = re.search(r"cell kernel: (\S+)", text)
+        if m:
+            q["kernel"] = m.group(1)
+    return q
+
+
 EXTRACTORS = {
     "sweep": extract_sweep,
     "fit": extract_fit,
@@ -425,7 +479,7 @@ EXTRACTORS = {
     "summary": extract_summary, "elementary": extract_elementary,
     "fibre_failure": extract_fibre_failure, "compare": extract_compare,
     "kink": extract_kink, "consistency": extract_consistency,
-    "recovery": extract_recovery,
+    "recovery": extract_recovery, "run": extract_run,
 }
 
 

@@ -121,6 +121,50 @@ add identification_ktd quick \
   "compare:$out/identification_ktd.log kink:$out/identification_ktd.log table1=history:$out/fe_table1 k_td_65e6=history:$out/fe_ktd_65e6 k_td_20e6=history:$out/fe_ktd_20e6 k_td_6_5e6=history:$out/fe_ktd_6.5e6" \
   "$(prm fe_table1 prm/km2_120ms_fe.prm 'subsection Output\n  set Snapshot interval = 1e-6\nend\n') && $exe $out/fe_table1.prm > $out/fe_table1.log$ktd_runs && $py scripts/compare_identified.py $figs/history_dem_km2_120ms.csv $out/identification_table1.png 'Table 1=$out/fe_table1/history_fe.csv' && $py scripts/compare_identified.py $figs/history_dem_km2_120ms.csv $out/identification_ktd.png$sweep && echo '-- fe_table1' && $py scripts/fe_kink_compaction.py $out/fe_table1/fe_0010.0.vtu $out/fe_table1/fe_0000.0.vtu | tail -1"
 
+# doc/fe-model.md section 7, README: the paper's FE case alone
+# (prm/km2_120ms_fe.prm, full yarn, one rank), with failure off and with
+# half the safety factor.
+add fe_paper_case quick "$CODE" \
+  "run:$out/fe_paper_case:$out/fe_paper_case_run.log nofailure=run:$out/fe_paper_case_nofailure sf04=run:$out/fe_paper_case_sf04" \
+  "$(prm fe_paper_case prm/km2_120ms_fe.prm) && $exe $out/fe_paper_case.prm > $out/fe_paper_case_run.log && $(prm fe_paper_case_nofailure prm/km2_120ms_fe.prm 'subsection Yarn\n  set Failure = false\nend\n') && $exe $out/fe_paper_case_nofailure.prm && $(prm fe_paper_case_sf04 prm/km2_120ms_fe.prm 'subsection Time\n  set Safety factor = 0.4\nend\n') && $exe $out/fe_paper_case_sf04.prm"
+# doc/fe-model.md section 2: the progressive law without onset spread
+# (prm/km2_120ms_fe_progressive.prm, one rank) with the cell kernel the
+# CPU runs and with the portable one.
+nospread='subsection Yarn\n  set Damage onset spread = 0\nend\n'
+add fe_kernels quick "$CODE" \
+  "native=run:$out/fe_kernels_native:$out/fe_kernels_native.log portable=run:$out/fe_kernels_portable:$out/fe_kernels_portable.log" \
+  "$(prm fe_kernels_native prm/km2_120ms_fe_progressive.prm "$nospread") && $exe $out/fe_kernels_native.prm > $out/fe_kernels_native.log && $(prm fe_kernels_portable prm/km2_120ms_fe_progressive.prm "$nospread") && YARN_IMPACT_PORTABLE_KERNEL=1 $exe $out/fe_kernels_portable.prm > $out/fe_kernels_portable.log"
+# doc/fe-model.md section 6: the FE tests' runs (tests/fe/*.prm, one
+# rank), the early deceleration of smith_free on finer meshes and
+# smith_prescribed with the paper's 2.2 mm nose.
+fever=""
+fex=""
+for t in bar_wave_speed energy_conservation smith_free smith_prescribed; do
+  fever="$fever && $(one_run fe_verification_$t tests/fe/$t.prm)"
+  fex="$fex $t=run:$out/fe_verification_$t"
+done
+for v in "c100:subsection FE\n  set Cells along the axis = 100\nend\n" \
+         "c400r1:subsection FE\n  set Section refinements = 1\nend\n" \
+         "c800r1:subsection FE\n  set Cells along the axis = 800\n  set Section refinements = 1\nend\n"; do
+  # the window is measured, not checked: the coarse mesh is outside the
+  # test's tolerance
+  v="$v""subsection Verification\n  set Checks =\nend\n"
+  fever="$fever && $(one_run fe_verification_free_${v%%:*} tests/fe/smith_free.prm "${v#*:}")"
+  fex="$fex free_${v%%:*}=run:$out/fe_verification_free_${v%%:*}"
+done
+fever="$fever && $(one_run fe_verification_prescribed_nose22 tests/fe/smith_prescribed.prm 'subsection Projectile\n  set Diameter = 2.2e-3\nend\nsubsection Verification\n  set Checks =\nend\n')"
+fex="$fex prescribed_nose22=run:$out/fe_verification_prescribed_nose22"
+add fe_verification quick "$CODE tests/fe" "${fex# }" "true$fever"
+# doc/dem.md section 9: the DEM tests' runs (tests/dem/*.prm, one rank).
+demver=""
+demx=""
+for t in single_fibre_wave_speed smith_plateau_strain smith_deceleration \
+         energy_balance cut_recoil; do
+  demver="$demver && $(one_run dem_verification_$t tests/dem/$t.prm)"
+  demx="$demx $t=run:$out/dem_verification_$t"
+done
+add dem_verification quick "$CODE tests/dem" "${demx# }" "true$demver"
+
 # ---- full: the long cases (minutes to hours each on 2 cores) -----------
 # The README's default case: the paper's study in one run (FE and DEM).
 add default full "$CODE" \

@@ -7,7 +7,9 @@ project, not of who worked on it or when (doc/results/README.md):
   every marker names an entry and a quantity the registry has (stale
   entries are warned about, not failed);
 - no page (README.md, doc/*.md, doc/results/README.md, outside code
-  blocks) speaks of people, branches, work periods or issue numbers.
+  blocks) speaks of people, branches, work periods or issue numbers;
+- the pages in HISTORY_PAGES describe the code as it is, not how it
+  changed ("today", "no longer", "is now", "not merged", "earlier code").
 
 Usage: doc_results.py SOURCE_DIR. Prints one line per problem and exits 1
 if there is any.
@@ -34,6 +36,19 @@ PATTERNS = [re.compile(p, re.I) for p in (
     r"\bassignees?\b", r"\bhelpers? (agent|session)\b",
 )]
 
+# Wording of the project's history. Some of it has a physical sense too
+# ("the broken yarn no longer decelerates it"), so it is checked on the
+# pages that are written without it.
+HISTORY = [re.compile(p, re.I) for p in (
+    r"\btoday'?s?\b", r"\bnot merged\b", r"\bno longer\b", r"\bused to\b",
+    r"\bbefore this (commit|change)", r"\bearlier (code|versions?|commits?)\b",
+    r"\bis now\b", r"\bprevious (code|versions?|commits?)\b",
+    r"\bfirst version\b", r"\b(we|our)\b",
+)]
+HISTORY_PAGES = ("README.md", "doc/fe-model.md", "doc/theory.md",
+                 "doc/user-guide.md", "doc/dem.md", "doc/performance.md",
+                 "doc/performance-dem.md")
+
 
 def pages(src):
     yield os.path.join(src, "README.md")
@@ -59,6 +74,13 @@ def main():
                 if m:
                     problems.append(f"{rel}:{n}: speaks of people, branches, "
                                     f"work periods or issues ('{m.group(0).strip()}')")
+            if rel in HISTORY_PAGES:
+                for p in HISTORY:
+                    m = p.search(line)
+                    if m:
+                        problems.append(f"{rel}:{n}: speaks of the project's "
+                                        f"history or of its authors "
+                                        f"('{m.group(0).strip()}')")
     check = subprocess.run(
         ["/usr/bin/python3", os.path.join(src, "scripts", "fill_docs.py"),
          "--check"], capture_output=True, text=True)
