@@ -201,7 +201,7 @@ add identification full "$CODE scripts/run_identification.sh scripts/identify_ch
 # doc/ballistics.md: the velocity sweep.
 add ballistic_sweep full "$CODE scripts/ballistic_sweep.py" \
   "summary:$out/ballistic_sweep.log sweep:$out/ballistic_sweep" \
-  "$py scripts/ballistic_sweep.py --build $build --out $out/ballistic_sweep --np $np --models charmetant,linear,dem,hybrid"
+  "$py scripts/ballistic_sweep.py --build $build --out $out/ballistic_sweep --np $np --models charmetant,linear,dem,hybrid --dem-velocities 450,600,1000 --hybrid-velocities 450,600,1000"
 # doc/performance.md, doc/performance-dem.md: the benchmarks.
 add bench_fe_throughput full "$CODE bench" "summary:$out/bench_fe_throughput.log" \
   "$build/bench_fe_throughput"
