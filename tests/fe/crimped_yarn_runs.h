@@ -22,7 +22,8 @@ namespace CrimpedYarnRuns
 {
   using namespace YarnImpact;
 
-  /** A short yarn of length @p length [m], clamped at both ends, with
+  /** A short yarn of length @p length [m], clamped at both ends, modelled
+   * whole, with
    * @p cells along it, crimped by @p amplitude [m] with the wavelength
    * @p wavelength [m] (no projectile contact: the projectile is placed 1 m
    * above it). */
@@ -42,8 +43,9 @@ namespace CrimpedYarnRuns
         const std::string &extra = "")
     {
       std::ostringstream text;
-      text << "set Model = fe\nsubsection Yarn\n set Length = " << length
-           << "\n set Failure = false\nend\n"
+      text << "set Model = fe\nset Symmetry = none\nsubsection Yarn\n set "
+              "Length = "
+           << length << "\n set Failure = false\nend\n"
            << "subsection FE\n set Cells along the axis = " << cells
            << "\n subsection Crimp\n  set Amplitude = " << amplitude
            << "\n  set Wavelength = " << wavelength << "\n end\nend\n"
