@@ -165,9 +165,9 @@ namespace YarnImpact
         "Crimp amplitude A: the yarn's centreline is (x, A cos(2 pi x / "
         "Wavelength), 0) over the span x in [-L/2, L/2], a crest under the "
         "projectile at x = 0, with the section normal to the centreline and "
-        "the fibres along its tangent; 0: the straight yarn. Not above the "
-        "centreline's smallest radius of curvature minus the thickness "
-        "semi-axis allows [m].");
+        "the fibres along its tangent; 0: the straight yarn. The "
+        "centreline's smallest radius of curvature, Wavelength^2 / (4 pi^2 "
+        "Amplitude), must exceed Yarn/Thickness semi-axis [m].");
       prm.declare_entry("Wavelength",
                         "2e-3",
                         Patterns::Double(),
