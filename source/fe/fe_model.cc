@@ -5,6 +5,7 @@
 #include <yarn_impact/core/reproducible_sum.h>
 #include <yarn_impact/fe/constitutive_law.h>
 #include <yarn_impact/fe/fe_model.h>
+#include <yarn_impact/fe/yarn_mesh.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/fe/fe_q.h>
@@ -39,7 +40,15 @@ namespace YarnImpact
       , fe(FE_Q<3>(1), 3)
       , dof_handler(tria)
       , contact(parameters.contact)
-    {}
+    {
+      if (parameters.crimp.crimped())
+        crimped.emplace(crimped_yarn_geometry(shared.yarn,
+                                              shared.general.symmetry,
+                                              parameters.n_axial_cells,
+                                              parameters.section_refinements,
+                                              parameters.preserve_section_area,
+                                              parameters.crimp));
+    }
 
 
     template <class Law>
@@ -206,8 +215,24 @@ namespace YarnImpact
                  const MPI_Comm communicator)
     {
       validate(shared, parameters);
-      const Parameters law_parameters = with_fibre_data(shared, parameters);
-      const double density            = law_parameters.density;
+      Parameters law_parameters = with_fibre_data(shared, parameters);
+      // A crimped yarn's fibres follow its centreline: each Gauss point
+      // gets the tangent at its section (doc/fe-model.md section 8).
+      if (parameters.crimp.crimped())
+        {
+          const Fabric::CrimpedYarn crimped(
+            crimped_yarn_geometry(shared.yarn,
+                                  shared.general.symmetry,
+                                  parameters.n_axial_cells,
+                                  parameters.section_refinements,
+                                  parameters.preserve_section_area,
+                                  parameters.crimp));
+          law_parameters.fibre_direction = [crimped](const double *X,
+                                                     double *M) {
+            crimped.fibre_direction(X, M);
+          };
+        }
+      const double density = law_parameters.density;
       return with_law(law_parameters,
                       density,
                       [&](const auto &law) -> std::unique_ptr<ImpactModel> {

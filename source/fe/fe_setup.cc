@@ -62,6 +62,8 @@ namespace YarnImpact
                               parameters.layer_weight.size(),
                               parameters.section_refinements,
                               parameters.preserve_section_area);
+      else if (crimped)
+        create_crimped_yarn_mesh(tria, *crimped);
       else
         create_yarn_mesh(tria,
                          yarn,
@@ -88,6 +90,7 @@ namespace YarnImpact
       reference_coordinate.assign(partitioner->locally_owned_size() +
                                     partitioner->n_ghost_indices(),
                                   0.);
+      reference_abscissa.assign(reference_coordinate.size(), 0.);
 
       const unsigned int refinement_factor = 1u
                                              << parameters.global_refinements;
@@ -207,6 +210,8 @@ namespace YarnImpact
                 partitioner->global_to_local(cell->vertex_dof_index(a, d));
               cells.dofs.push_back(local);
               reference_coordinate[local] = cell->vertex(a)[d];
+              if (d == 0)
+                reference_abscissa[local] = abscissa(cell->vertex(a));
               lumped_mass.local_element(local) += node_mass;
               if (cell->is_locally_owned())
                 mass_check.local_element(local) += node_mass;
@@ -289,14 +294,16 @@ namespace YarnImpact
                  ? X[0] * M[0] + X[1] * M[1] + X[2] * M[2]
                  : X[0];
       };
+      // Its extent along the yarn (in abscissa) and its highest point
+      // across it, for its layer and depth.
       double x_lo = std::numeric_limits<double>::max(), x_hi = -x_lo;
       double f_lo = x_lo, f_hi = x_hi;
       double y_top = -std::numeric_limits<double>::max();
       for (unsigned int a = 0; a < n_nodes; ++a)
         {
-          y_top = std::max(y_top, cell->vertex(a)[1]);
-          x_lo  = std::min(x_lo, cell->vertex(a)[0]);
-          x_hi  = std::max(x_hi, cell->vertex(a)[0]);
+          y_top = std::max(y_top, section_height(cell->vertex(a)));
+          x_lo  = std::min(x_lo, abscissa(cell->vertex(a)));
+          x_hi  = std::max(x_hi, abscissa(cell->vertex(a)));
           f_lo  = std::min(f_lo, along(cell->vertex(a)));
           f_hi  = std::max(f_hi, along(cell->vertex(a)));
         }
@@ -386,7 +393,9 @@ namespace YarnImpact
                cells.dofs[c * n_cell_dofs + 3 * a + 1],
                cells.dofs[c * n_cell_dofs + 3 * a + 2]}};
             nodes.push_back(node);
-            const double x = reference_coordinate[node[0]];
+            // Along the yarn: the abscissa of the node's section, whose
+            // end sections are clamped.
+            const double x = reference_abscissa[node[0]];
             const double z = reference_coordinate[node[2]];
             node_station.push_back(static_cast<unsigned int>(
               std::round((std::abs(x) - station_origin) / station_spacing)));

@@ -156,6 +156,26 @@ namespace YarnImpact
                         "divided by its normal (penalty) stiffness, for the "
                         "Cundall-Strack law, in [0, 1] [-].");
       prm.leave_subsection();
+
+      prm.enter_subsection("Crimp");
+      prm.declare_entry(
+        "Amplitude",
+        "0",
+        Patterns::Double(),
+        "Crimp amplitude A: the yarn's centreline is (x, A cos(2 pi x / "
+        "Wavelength), 0) over the span x in [-L/2, L/2], a crest under the "
+        "projectile at x = 0, with the section normal to the centreline and "
+        "the fibres along its tangent; 0: the straight yarn. The "
+        "centreline's smallest radius of curvature, Wavelength^2 / (4 pi^2 "
+        "Amplitude), must exceed Yarn/Thickness semi-axis [m].");
+      prm.declare_entry("Wavelength",
+                        "2e-3",
+                        Patterns::Double(),
+                        "Crimp wavelength lambda along x: twice the spacing "
+                        "of the crossing yarns (used only with a positive "
+                        "Amplitude; at least 8 cells of Cells along the "
+                        "axis per wavelength) [m].");
+      prm.leave_subsection();
       prm.leave_subsection();
     }
 
@@ -225,6 +245,14 @@ namespace YarnImpact
                 contact.tangential_stiffness_ratio <= 1.,
               "FE/Contact/Tangential stiffness ratio",
               "must lie in [0, 1]");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Crimp");
+      crimp.amplitude = prm.get_double("Amplitude");
+      require(crimp.amplitude >= 0.,
+              "FE/Crimp/Amplitude",
+              "must not be negative (0: the straight yarn)");
+      crimp.wavelength = get_positive_double(prm, "FE/Crimp", "Wavelength");
       prm.leave_subsection();
       prm.leave_subsection();
     }

@@ -37,6 +37,56 @@ namespace YarnImpact
     }
 
 
+    namespace
+    {
+      /** The checks of `FE/Crimp` with a positive amplitude. */
+      void
+      validate_crimp(const YarnImpact::Parameters::Shared &shared,
+                     const Parameters &parameters)
+      {
+        using YarnImpact::Parameters::require;
+        const CrimpParameters &crimp = parameters.crimp;
+        require(parameters.layer_weight.empty(),
+                "FE/Crimp/Amplitude",
+                "must be 0 for Model = hybrid (its FE part is a straight "
+                "yarn)");
+        require(parameters.global_refinements == 0,
+                "FE/Global refinements",
+                "must be 0 with a crimp (FE/Crimp/Amplitude > 0): it would "
+                "put the new vertices on the straight edges between the "
+                "swept sections, off the tube; refine with FE/Cells along "
+                "the axis and FE/Section refinements");
+        // The smallest radius of curvature of A cos(k x), at the crests,
+        // 1 / (A k^2): a section reaching past it folds the tube.
+        const double k      = 2. * M_PI / crimp.wavelength;
+        const double radius = 1. / (crimp.amplitude * k * k);
+        const double a_y    = shared.yarn.thickness_semi_axis;
+        std::ostringstream fold;
+        fold << "= " << crimp.amplitude * 1e3
+             << " mm folds the yarn: the centreline's smallest radius of "
+                "curvature, Wavelength^2 / (4 pi^2 Amplitude) = "
+             << radius * 1e3
+             << " mm, must exceed the yarn's thickness semi-axis "
+                "(Yarn/Thickness semi-axis) "
+             << a_y * 1e3 << " mm: lower it below " << 1. / (a_y * k * k) * 1e3
+             << " mm or lengthen the wavelength";
+        require(radius > a_y, "FE/Crimp/Amplitude", fold.str());
+        // The sections are equally spaced in x; a wavelength over fewer
+        // than 8 of them is a polygon, not a crimp.
+        const double h = shared.yarn.length / parameters.n_axial_cells;
+        std::ostringstream coarse;
+        coarse << "= " << crimp.wavelength * 1e3 << " mm spans "
+               << crimp.wavelength / h << " cells of " << h * 1e3
+               << " mm (Yarn/Length / FE/Cells along the axis): at least 8 "
+                  "are needed to resolve the crimp (raise FE/Cells along "
+                  "the axis)";
+        require(crimp.wavelength >= 8. * h * (1. - 1e-12),
+                "FE/Crimp/Wavelength",
+                coarse.str());
+      }
+    } // namespace
+
+
     void
     validate(const YarnImpact::Parameters::Shared &shared,
              const Parameters &given)
@@ -52,6 +102,8 @@ namespace YarnImpact
               "FE/Cells along the axis",
               "is too small: cells longer than the projectile radius cannot "
               "resolve the contact");
+      if (parameters.crimp.crimped())
+        validate_crimp(shared, parameters);
       const FailureParameters &failure = parameters.failure;
       if (shared.yarn.failure &&
           failure.model == FailureParameters::Model::progressive)
@@ -128,8 +180,9 @@ namespace YarnImpact
       // With fibre directions each cell also holds its Gauss points'
       // frames (CellData::frames).
       e.bytes =
-        (6.5e3 +
-         (parameters.fibre_direction ? sizeof(double) * frame_size : 0.)) *
+        (6.5e3 + (parameters.fibre_direction || parameters.crimp.crimped()
+                    ? sizeof(double) * frame_size
+                    : 0.)) *
         e.n_elements;
       e.element_name = "cells";
       e.parameter =

@@ -5,6 +5,7 @@
 // members (fe_model.cc, fe_observables.cc); not part of the public
 // interface, which is fe/fe_model.h.
 
+#include <yarn_impact/core/crimped_yarn.h>
 #include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/fe/cell_kernel.h>
@@ -21,6 +22,7 @@
 #include <mpi.h>
 
 #include <array>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -185,6 +187,28 @@ namespace YarnImpact
                            : -0.5 * shared.yarn.length;
       }
 
+      /** The abscissa [m] of the reference point @p X [m] along the yarn:
+       * X_x on the straight yarn, the centreline abscissa of its section
+       * on a crimped one (CrimpedYarn::abscissa_of). The stations, layers
+       * and clamps are placed by it. */
+      double
+      abscissa(const dealii::Point<3> &X) const
+      {
+        return crimped ? crimped->abscissa_of(X) : X[0];
+      }
+
+      /** The height [m] of the reference point @p X [m] across the yarn,
+       * towards the projectile: X_y on the straight yarn, along the
+       * centreline's normal at its section on a crimped one. */
+      double
+      section_height(const dealii::Point<3> &X) const
+      {
+        if (!crimped)
+          return X[1];
+        const double s = crimped->abscissa_of(X);
+        return (X - crimped->centreline(s)) * crimped->normal(s);
+      }
+
       /** Set-up step 1: the coarse mesh of the yarn (or of a hybrid's part),
        * refined globally. */
       void
@@ -275,6 +299,11 @@ namespace YarnImpact
       VectorType inverse_mass;
       /** Reference coordinate of each local dof (its own component). */
       std::vector<double> reference_coordinate;
+      /** The crimped yarn of FE/Crimp; none: the straight yarn. */
+      std::optional<Fabric::CrimpedYarn> crimped;
+      /** Abscissa (abscissa()) [m] of each local dof's vertex, on its x
+       * dof; on the straight yarn its reference x, bit for bit. */
+      std::vector<double> reference_abscissa;
 
       /** Owned and ghost cells, in the order of their CellIds, as the
        * force loop sees them (setup_cells() says why). */

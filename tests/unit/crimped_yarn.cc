@@ -9,8 +9,8 @@
 // here by bisection), and the straight limit A = 0 equal to the FE yarn
 // mesh vertex for vertex.
 
+#include <yarn_impact/core/crimped_yarn.h>
 #include <yarn_impact/core/parameters.h>
-#include <yarn_impact/fabric/crimped_yarn.h>
 #include <yarn_impact/fe/yarn_mesh.h>
 
 #include <deal.II/base/quadrature_lib.h>

@@ -73,6 +73,29 @@ namespace YarnImpact
       double tangential_stiffness_ratio = 0.2857142857142857;
     };
 
+    /**
+     * The yarn's crimp (subsection `FE/Crimp`, doc/fe-model.md section 8):
+     * its centreline c(x) = (x, A cos(2 pi x / lambda), 0) over the span
+     * x in [-L/2, L/2], a crest under the projectile at x = 0, the section
+     * normal to the centreline and the fibres along its tangent
+     * (Fabric::CrimpedYarn). A = 0: the straight yarn.
+     */
+    struct CrimpParameters
+    {
+      /** Crimp amplitude A [m]: the centreline's largest distance from
+       * the plane y = 0. */
+      double amplitude = 0.;
+      /** Crimp wavelength lambda [m], along x. */
+      double wavelength = 2e-3;
+
+      /** Whether the yarn is crimped (A > 0). */
+      bool
+      crimped() const
+      {
+        return amplitude > 0.;
+      }
+    };
+
     /** All parameters of the FE model (subsection `FE`). */
     struct Parameters
     {
@@ -103,6 +126,8 @@ namespace YarnImpact
       ContactParameters contact;
       /** How a cell fails (entries of subsection `Yarn`). */
       FailureParameters failure;
+      /** The yarn's crimp (none by default). */
+      CrimpParameters crimp;
 
       /**
        * Set by a coupling (`Model = hybrid`, coupling/hybrid_model.h), never

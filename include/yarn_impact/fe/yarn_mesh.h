@@ -1,7 +1,9 @@
 #ifndef yarn_impact_fe_yarn_mesh_h
 #define yarn_impact_fe_yarn_mesh_h
 
+#include <yarn_impact/core/crimped_yarn.h>
 #include <yarn_impact/core/parameters.h>
+#include <yarn_impact/fe/parameters.h>
 
 namespace dealii
 {
@@ -44,6 +46,34 @@ namespace YarnImpact
                      const unsigned int n_axial_cells,
                      const unsigned int section_refinements,
                      const bool preserve_section_area);
+
+    /**
+     * The crimped yarn of `FE/Crimp` (@p crimp) as a Fabric::CrimpedYarn:
+     * the centreline A cos(2 pi x / lambda) (phase pi/2, a crest at x = 0)
+     * over [-L/2, L/2] (symmetry none) or [0, L/2] (half, quarter, and
+     * then only the section's cells with z >= 0 for quarter) in
+     * @p n_axial_cells over the whole length, the section of the yarn
+     * @p yarn [m] refined @p section_refinements times. Does not check
+     * it: FE::validate() does, and the CrimpedYarn throws.
+     */
+    Fabric::CrimpedYarnGeometry
+    crimped_yarn_geometry(const YarnImpact::Parameters::Yarn &yarn,
+                          const YarnImpact::Parameters::Symmetry symmetry,
+                          const unsigned int n_axial_cells,
+                          const unsigned int section_refinements,
+                          const bool preserve_section_area,
+                          const CrimpParameters &crimp);
+
+    /**
+     * The mesh of the crimped yarn @p crimped (CrimpedYarn::create_mesh)
+     * with the boundary ids of BoundaryIds: its end sections the clamps
+     * (or, at abscissa 0 of a half or quarter model, where the section at
+     * the crest is the plane x = 0, the symmetry plane), its half
+     * section's plane z = 0 the symmetry plane z = 0.
+     */
+    void
+    create_crimped_yarn_mesh(dealii::Triangulation<3, 3> &mesh,
+                             const Fabric::CrimpedYarn &crimped);
 
     /**
      * A part of the yarn (half symmetry): the section extruded along x over

@@ -1,5 +1,5 @@
-#ifndef yarn_impact_fabric_crimped_yarn_h
-#define yarn_impact_fabric_crimped_yarn_h
+#ifndef yarn_impact_core_crimped_yarn_h
+#define yarn_impact_core_crimped_yarn_h
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -13,11 +13,12 @@ namespace dealii
 namespace YarnImpact
 {
   /**
-   * The woven fabric: the geometry of its crimped yarns, for a later
-   * `Model = fabric` (doc/fe-model.md section 8). Like a model, it
-   * includes core and mechanics only; what it builds is geometry, a mesh
-   * and a fibre direction at every reference point, that the FE model
-   * takes through FE::Parameters::fibre_direction.
+   * The woven fabric's geometry: its crimped yarns (doc/fe-model.md
+   * section 8). In core, beside the section it sweeps, because two models
+   * build on it: the FE yarn meshes a crimped yarn with it (`FE/Crimp`),
+   * and a woven fabric is made of them. What it builds is geometry, a
+   * mesh and a fibre direction at every reference point, that the FE
+   * model takes through FE::Parameters::fibre_direction.
    */
   namespace Fabric
   {
@@ -29,6 +30,9 @@ namespace YarnImpact
       /** The two end sections x = x_begin and x = x_end of the centreline
        * (normal to its tangent there). */
       constexpr unsigned int end = 1;
+      /** The plane z = 0 of a half section
+       * (CrimpedYarnGeometry::half_section). */
+      constexpr unsigned int symmetry_z = 2;
     } // namespace BoundaryIds
 
     /** What a crimped yarn is made of [m, -]. */
@@ -40,6 +44,10 @@ namespace YarnImpact
       /** Crimp wavelength lambda [m]: twice the spacing of the crossing
        * yarns. */
       double wavelength = 2e-3;
+      /** Phase phi [rad] of the centreline's height A sin(k x + phi):
+       * pi/2 puts a crest at x = 0 (the FE yarn's impact point, and a
+       * centreline mirror-symmetric about x = 0). */
+      double phase = 0.;
       /** The centreline spans x in [x_begin, x_end] [m]. */
       double x_begin = -2e-3, x_end = 2e-3;
       /** Semi-axis of the section across the fabric (along the
@@ -53,11 +61,14 @@ namespace YarnImpact
       unsigned int section_refinements = 0;
       /** Scale the polygonal section to the ellipse's area. */
       bool preserve_section_area = true;
+      /** Keep only the section's cells with z >= 0 (a model with the
+       * symmetry plane z = 0; create_yarn_section's half section). */
+      bool half_section = false;
     };
 
     /**
      * A yarn whose centreline undulates across the fabric's mid-plane,
-     * c(x) = (x, A sin(2 pi x / lambda), 0), with its elliptical section
+     * c(x) = (x, A sin(2 pi x / lambda + phi), 0), with its elliptical section
      * kept normal to the centreline's tangent t(x): the section's
      * thickness semi-axis lies along the normal n = e_z x t in the x-y
      * plane, its width semi-axis along z. The fabric lies in the x-z plane

@@ -1,5 +1,5 @@
+#include <yarn_impact/core/crimped_yarn.h>
 #include <yarn_impact/core/yarn_section.h>
-#include <yarn_impact/fabric/crimped_yarn.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/grid/grid_generator.h>
@@ -38,21 +38,21 @@ namespace YarnImpact
     double
     CrimpedYarn::height(const double x) const
     {
-      return g.amplitude * std::sin(k * x);
+      return g.amplitude * std::sin(k * x + g.phase);
     }
 
 
     double
     CrimpedYarn::slope(const double x) const
     {
-      return g.amplitude * k * std::cos(k * x);
+      return g.amplitude * k * std::cos(k * x + g.phase);
     }
 
 
     double
     CrimpedYarn::curvature_term(const double x) const
     {
-      return -g.amplitude * k * k * std::sin(k * x);
+      return -g.amplitude * k * k * std::sin(k * x + g.phase);
     }
 
 
@@ -163,13 +163,14 @@ namespace YarnImpact
                           g.thickness_semi_axis,
                           g.width_semi_axis,
                           g.section_refinements,
-                          false,
+                          g.half_section,
                           g.preserve_section_area);
       const double span = g.x_end - g.x_begin;
       Triangulation<3> swept;
       GridGenerator::extrude_triangulation(section, g.n_cells + 1, span, swept);
-      // The ends are the faces at the first and last station; found before
-      // the sweep, where they are the planes w = 0 and w = span.
+      // The ends are the faces at the first and last station, and the
+      // half section's symmetry plane the faces at v = 0; found before the
+      // sweep, where they are the planes w = 0, w = span and v = 0.
       const double tol = 1e-6 * span / g.n_cells;
       for (const auto &cell : swept.active_cell_iterators())
         for (const auto &face : cell->face_iterators())
@@ -177,6 +178,10 @@ namespace YarnImpact
             face->set_boundary_id(std::abs(face->center()[2]) < tol ||
                                       std::abs(face->center()[2] - span) < tol
                                     ? BoundaryIds::end
+                                  : g.half_section &&
+                                      std::abs(face->center()[1]) <
+                                        1e-9 * g.width_semi_axis
+                                    ? BoundaryIds::symmetry_z
                                     : BoundaryIds::lateral);
       // The extrusion's (u, v, w) = (thickness, width, distance along x) to
       // c(x) + u n(x) + v e_z, x = x_begin + w. At A = 0 this is the

@@ -1,0 +1,136 @@
+#ifndef yarn_impact_fabric_woven_patch_h
+#define yarn_impact_fabric_woven_patch_h
+
+#include <yarn_impact/core/crimped_yarn.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <vector>
+
+namespace dealii
+{
+  template <int dim, int spacedim>
+  class Triangulation;
+}
+
+namespace YarnImpact
+{
+  namespace Fabric
+  {
+    /** What a plain-woven patch is made of [m, -]. */
+    struct WovenPatchGeometry
+    {
+      /** Warp yarns, along x, side by side in z [-]. */
+      unsigned int n_warp = 2;
+      /** Weft yarns, along z, side by side in x [-]. */
+      unsigned int n_weft = 2;
+      /** Distance between neighbouring parallel yarns [m]; the crimp
+       * wavelength is twice it. */
+      double spacing = 1e-3;
+      /** Crimp amplitude A of every yarn [m]; crossing yarns' centrelines
+       * are 2 A apart at the crossing. */
+      double amplitude = 0.1e-3;
+      /** Semi-axis of a section across the fabric (y) [m]. */
+      double thickness_semi_axis = 0.0575e-3;
+      /** Semi-axis of a section in the fabric's plane [m]. */
+      double width_semi_axis = 0.267e-3;
+      /** Cells along a yarn per spacing [-]. */
+      unsigned int cells_per_spacing = 8;
+      /** Refinements of each yarn's 12-cell section [-]. */
+      unsigned int section_refinements = 0;
+    };
+
+    /**
+     * A plain-woven patch (doc/fe-model.md section 8.3): n_warp warp yarns
+     * along x at z_i = (i - (n_warp - 1)/2) s and n_weft weft yarns along
+     * z at x_j = (j - (n_weft - 1)/2) s, s the spacing, each a
+     * CrimpedYarn of wavelength 2 s spanning the patch, n s long, from
+     * half a spacing before the first crossing yarn to half a spacing
+     * after the last. Warp i's centreline is y = A cos(pi (x - x_0)/s +
+     * i pi), weft j's y = -A cos(pi (z - z_0)/s + j pi): at every crossing
+     * one yarn passes over (+A) and the other under (-A), alternately
+     * along each yarn, the plain weave. Yarn ids: warp i is i, weft j is
+     * n_warp + j.
+     *
+     * The yarns must not touch at rest: the constructor refuses
+     * A <= a_y (crossing sections overlap) and 2 a_z >= s (neighbouring
+     * parallel yarns overlap), as well as a folding crimp (CrimpedYarn).
+     */
+    class WovenPatch
+    {
+    public:
+      /** @param geometry the patch; throws std::invalid_argument when the
+       * yarns would touch or fold. */
+      explicit WovenPatch(const WovenPatchGeometry &geometry);
+
+      /** The geometry [m, -]. */
+      const WovenPatchGeometry &
+      geometry() const
+      {
+        return g;
+      }
+
+      /** Number of yarns [-], warp then weft. */
+      unsigned int
+      n_yarns() const
+      {
+        return g.n_warp + g.n_weft;
+      }
+
+      /** Whether the yarn @p id is a warp yarn (along x). */
+      bool
+      is_warp(const unsigned int id) const
+      {
+        return id < g.n_warp;
+      }
+
+      /** Yarn @p id in its own frame: its centreline along its local x
+       * (the global x of a warp yarn, the global z of a weft yarn). */
+      const CrimpedYarn &
+      yarn(const unsigned int id) const
+      {
+        return yarns[id];
+      }
+
+      /** The point @p X [m] of the patch in the own frame of yarn @p id
+       * [m], where that yarn is a CrimpedYarn centred on z = 0. */
+      dealii::Point<3>
+      to_yarn_frame(const unsigned int id, const dealii::Point<3> &X) const;
+
+      /** The section coordinates (u, v) [m] of @p X in yarn @p id, along
+       * its section's normal and its width, and the abscissa [m] of its
+       * section along the yarn; @return (u/a_y)^2 + (v/a_z)^2 [-], below
+       * 1 inside the yarn's elliptical tube (abscissa within its span). */
+      double
+      section_radius(const unsigned int id, const dealii::Point<3> &X) const;
+
+      /** The yarn that holds @p X [m]: the one of smallest
+       * section_radius() [-]. */
+      unsigned int
+      yarn_of(const dealii::Point<3> &X) const;
+
+      /** The fibre direction [-] at @p X [m] (in the form of
+       * FE::Parameters::fibre_direction): the tangent of yarn_of(X) at
+       * its section, turned into the patch's frame. */
+      dealii::Tensor<1, 3>
+      fibre_direction(const dealii::Point<3> &X) const;
+
+      /** The mesh: every yarn's CrimpedYarn::create_mesh, placed and
+       * turned into the patch, merged into one triangulation with no
+       * shared vertex; each cell's material id is its yarn's id, the
+       * boundary ids those of BoundaryIds (lateral, end). */
+      void
+      create_mesh(dealii::Triangulation<3, 3> &mesh) const;
+
+    private:
+      WovenPatchGeometry g;
+      std::vector<CrimpedYarn> yarns;
+      /** The offset [m] of each yarn across its own axis in the fabric's
+       * plane: z_i of warp i, x_j of weft j. */
+      std::vector<double> offset;
+    };
+  } // namespace Fabric
+} // namespace YarnImpact
+
+#endif

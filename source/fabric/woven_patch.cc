@@ -1,0 +1,167 @@
+#include <yarn_impact/fabric/woven_patch.h>
+
+#include <deal.II/base/numbers.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace YarnImpact
+{
+  namespace Fabric
+  {
+    using namespace dealii;
+
+    WovenPatch::WovenPatch(const WovenPatchGeometry &geometry)
+      : g(geometry)
+    {
+      if (g.n_warp == 0 || g.n_weft == 0 || !(g.spacing > 0.) ||
+          g.cells_per_spacing == 0)
+        throw std::invalid_argument(
+          "WovenPatch: the numbers of yarns and cells and the spacing must "
+          "be positive");
+      // At rest no two yarns may touch: a crossing's centrelines are 2 A
+      // apart across the fabric, neighbouring parallel ones s apart in it.
+      if (!(g.amplitude > g.thickness_semi_axis))
+        throw std::invalid_argument(
+          "WovenPatch: the crimp amplitude must exceed the thickness "
+          "semi-axis, or the crossing yarns overlap");
+      if (!(2. * g.width_semi_axis < g.spacing))
+        throw std::invalid_argument(
+          "WovenPatch: the spacing must exceed the yarn's width, or "
+          "neighbouring parallel yarns overlap");
+      const double k = numbers::PI / g.spacing;
+      for (unsigned int id = 0; id < n_yarns(); ++id)
+        {
+          const bool warp      = is_warp(id);
+          const unsigned int n = warp ? g.n_weft : g.n_warp;
+          const unsigned int i = warp ? id : id - g.n_warp;
+          // The first crossing yarn's position along this one, and this
+          // one's across the fabric.
+          const double first = -0.5 * (n - 1.) * g.spacing;
+          offset.push_back((i - 0.5 * ((warp ? g.n_warp : g.n_weft) - 1.)) *
+                           g.spacing);
+          CrimpedYarnGeometry y;
+          y.amplitude  = g.amplitude;
+          y.wavelength = 2. * g.spacing;
+          // Warp: A cos(k (x - first) + i pi); weft: -A cos(k (z - first)
+          // + j pi), as A sin(k x + phase).
+          y.phase =
+            (warp ? 0.5 : -0.5) * numbers::PI + i * numbers::PI - k * first;
+          y.x_begin             = -0.5 * n * g.spacing;
+          y.x_end               = 0.5 * n * g.spacing;
+          y.thickness_semi_axis = g.thickness_semi_axis;
+          y.width_semi_axis     = g.width_semi_axis;
+          y.n_cells             = n * g.cells_per_spacing;
+          y.section_refinements = g.section_refinements;
+          yarns.emplace_back(y); // throws if it folds
+        }
+    }
+
+
+    Point<3>
+    WovenPatch::to_yarn_frame(const unsigned int id, const Point<3> &X) const
+    {
+      // Warp: shifted across by z_i. Weft: turned about y, its own x the
+      // patch's z and its own z the patch's -x, shifted by x_j (a
+      // rotation, so that the cells keep their orientation).
+      return is_warp(id) ? Point<3>(X[0], X[1], X[2] - offset[id])
+                         : Point<3>(X[2], X[1], offset[id] - X[0]);
+    }
+
+
+    double
+    WovenPatch::section_radius(const unsigned int id, const Point<3> &X) const
+    {
+      const CrimpedYarn &y          = yarns[id];
+      const Point<3> P              = to_yarn_frame(id, X);
+      const double s                = y.abscissa_of(P);
+      const CrimpedYarnGeometry &yg = y.geometry();
+      if (s < yg.x_begin - 1e-9 * g.spacing || s > yg.x_end + 1e-9 * g.spacing)
+        return std::numeric_limits<double>::max();
+      const double u = (P - y.centreline(s)) * y.normal(s);
+      const double v = P[2];
+      return u * u / (g.thickness_semi_axis * g.thickness_semi_axis) +
+             v * v / (g.width_semi_axis * g.width_semi_axis);
+    }
+
+
+    unsigned int
+    WovenPatch::yarn_of(const Point<3> &X) const
+    {
+      unsigned int best = 0;
+      double smallest   = std::numeric_limits<double>::max();
+      for (unsigned int id = 0; id < n_yarns(); ++id)
+        {
+          const double r = section_radius(id, X);
+          if (r < smallest)
+            {
+              smallest = r;
+              best     = id;
+            }
+        }
+      return best;
+    }
+
+
+    Tensor<1, 3>
+    WovenPatch::fibre_direction(const Point<3> &X) const
+    {
+      const unsigned int id = yarn_of(X);
+      const Tensor<1, 3> t  = yarns[id].fibre_direction(to_yarn_frame(id, X));
+      if (is_warp(id))
+        return t;
+      Tensor<1, 3> T; // the weft's own x is the patch's z
+      T[0] = -t[2];
+      T[1] = t[1];
+      T[2] = t[0];
+      return T;
+    }
+
+
+    void
+    WovenPatch::create_mesh(Triangulation<3, 3> &mesh) const
+    {
+      std::vector<Triangulation<3>> parts(n_yarns());
+      std::vector<const Triangulation<3> *> pointers;
+      for (unsigned int id = 0; id < n_yarns(); ++id)
+        {
+          yarns[id].create_mesh(parts[id]);
+          const double o  = offset[id];
+          const bool warp = is_warp(id);
+          GridTools::transform(
+            [o, warp](const Point<3> &p) {
+              return warp ? Point<3>(p[0], p[1], p[2] + o)
+                          : Point<3>(o - p[2], p[1], p[0]);
+            },
+            parts[id]);
+          for (const auto &cell : parts[id].active_cell_iterators())
+            cell->set_material_id(id);
+          pointers.push_back(&parts[id]);
+        }
+      // No two yarns share a vertex (they do not touch): a tolerance far
+      // below their gaps merges none. The merge drops the boundary ids:
+      // the end sections are found again by their abscissa.
+      GridGenerator::merge_triangulations(pointers,
+                                          mesh,
+                                          1e-9 * g.thickness_semi_axis);
+      for (const auto &cell : mesh.active_cell_iterators())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            {
+              const unsigned int id        = cell->material_id();
+              const CrimpedYarnGeometry &y = yarns[id].geometry();
+              const double s =
+                yarns[id].abscissa_of(to_yarn_frame(id, face->center()));
+              const double tol = 1e-6 * g.spacing / g.cells_per_spacing;
+              face->set_boundary_id(std::abs(s - y.x_begin) < tol ||
+                                        std::abs(s - y.x_end) < tol
+                                      ? BoundaryIds::end
+                                      : BoundaryIds::lateral);
+            }
+    }
+  } // namespace Fabric
+} // namespace YarnImpact
