@@ -85,9 +85,15 @@ run() { # env-limit command...
   rc=$?
 }
 
-# 1. The history: the limit falls in the middle of a row.
+# 1. The history: the limit falls in the middle of its third row. The
+#    bytes before it are parameters.prm (which grows with every new
+#    parameter) and the history's header, measured on a run without a fault.
+fe_prm h0 0.3e-6 0 > h0.prm
+"$exe" h0.prm > /dev/null 2>&1 || fail "FE run without a fault"
+header=$(head -1 h0/history_fe.csv | wc -c)
+row=$(sed -n 2p h0/history_fe.csv | wc -c)
 fe_prm h 0.3e-6 0 > h.prm
-run 5000 "$exe" h.prm
+run $(($(wc -c < h0/parameters.prm) + header + 2 * row + row / 2)) "$exe" h.prm
 check "FE, disk full in the history" h "history_fe.csv"
 rows=$(($(wc -l < h/history_fe.csv) - 1))
 [ "$rows" -ge 1 ] || fail "FE history: no row kept"
