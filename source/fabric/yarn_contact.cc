@@ -274,8 +274,18 @@ namespace YarnImpact
           slot.touching = false;
           return;
         }
+      // The node's area facing the face, -A_s . n, when the contact
+      // starts: a node on a yarn's edge carries the share of its faces
+      // that press, not of those beside. Kept while the contact lasts, so
+      // that the normal force derives from the energy k delta^2 / 2 (the
+      // closest point's gap has the gradient n, -N_a n). Half the
+      // penalty: both sides of a contact are slaves, so two surfaces
+      // pressed by d carry p d per area.
       if (!slot.touching)
-        std::fill(slot.history, slot.history + 3, 0.);
+        {
+          std::fill(slot.history, slot.history + 3, 0.);
+          slot.stiffness = -0.5 * parameters.penalty * dot(ns, best.n);
+        }
       slot.touching = true;
 
       const auto &face = surface.faces[best_face];
@@ -286,12 +296,8 @@ namespace YarnImpact
           for (unsigned int a = 0; a < 4; ++a)
             v_rel[d] -= best.N[a] * velocity[3 * face[a] + d];
         }
-      // The node's area facing the face, -A_s . n: a node on a yarn's
-      // edge carries the share of its faces that press, not of those
-      // beside. Half the penalty: both sides of a contact are slaves, so
-      // two surfaces pressed by d carry p d per area.
       Contact::ContactConstants constants;
-      constants.stiffness = -0.5 * parameters.penalty * dot(ns, best.n);
+      constants.stiffness = slot.stiffness;
       constants.damping =
         parameters.damping_ratio > 0.
           ? Contact::critical_damping(parameters.damping_ratio,

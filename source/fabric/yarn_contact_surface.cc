@@ -151,7 +151,8 @@ namespace YarnImpact
                        double(slot.yarn),
                        slot.history[0],
                        slot.history[1],
-                       slot.history[2]});
+                       slot.history[2],
+                       slot.stiffness});
       int n_mine = mine.size();
       std::vector<int> n_all(counts.size()), offsets(counts.size() + 1, 0);
       MPI_Allgather(&n_mine,
@@ -173,7 +174,7 @@ namespace YarnImpact
                      MPI_DOUBLE,
                      communicator);
       std::map<std::pair<unsigned int, unsigned int>, const double *> old;
-      for (unsigned int i = 0; i < all.size(); i += 5)
+      for (unsigned int i = 0; i < all.size(); i += 6)
         old[{static_cast<unsigned int>(all[i]),
              static_cast<unsigned int>(all[i + 1])}] = &all[i + 2];
 
@@ -268,6 +269,7 @@ namespace YarnImpact
                     {
                       slot.touching = true;
                       std::copy(o->second, o->second + 3, slot.history);
+                      slot.stiffness = o->second[3];
                     }
                   slots.push_back(slot);
                 }

@@ -10,9 +10,10 @@
 //     mu N the force is the stick spring's, k_t/k_n p A u; above, mu N;
 // (c) an elastic frictionless collision of two blocks of free nodes (no
 //     internal forces: the contact alone), velocity Verlet with the
-//     contact's stable step times 0.5 and 0.1: momentum kept to 1e-12
-//     relative; the energy error, kinetic plus contact energy, within
-//     the stated tolerance and shrinking with the step.
+//     contact's stable step times 0.5, 0.1 and 0.05: momentum kept to
+//     1e-12 relative; the energy error after the bodies part, kinetic
+//     plus contact energy, below 1 %, 0.1 % and 0.025 %, shrinking as the
+//     step squared (velocity Verlet's order).
 
 #include <yarn_impact/fabric/yarn_contact.h>
 
@@ -174,7 +175,8 @@ main(int argc, char **argv)
     const auto s          = two_blocks(-gap, {4, 1, 2}, {5, 1, 3}, 0.1e-3);
     const double v0[2][3] = {{0.3, 1., 0.2}, {0., -0.5, 0.}};
     std::printf("(c) collision, gap 0.5 um, closing at 1.5 m/s\n");
-    for (const double safety : {0.5, 0.1})
+    std::vector<double> end_errors;
+    for (const double safety : {0.5, 0.1, 0.05})
       {
         Fabric::YarnContact contact(elastic, s, all_nodes(s), MPI_COMM_SELF);
         const double dt       = safety * contact.stable_time_step();
@@ -223,11 +225,12 @@ main(int argc, char **argv)
               v_lower += s.mass[i] * v[3 * i + 1];
               m_lower += s.mass[i];
             }
-        const double tolerance = safety == 0.5 ? 1e-3 : 1e-4;
-        std::printf("  dt = %.1f x %.4e s, %u steps, %u rebuilds, up to %u "
+        const double tolerance =
+          safety == 0.5 ? 1e-2 : (safety == 0.1 ? 1e-3 : 2.5e-4);
+        std::printf("  dt = %.2f x %.4e s, %u steps, %u rebuilds, up to %u "
                     "contacts, final contact energy %.1e J: momentum error "
                     "%.1e (below 1e-12: %s); energy error %.2e at the end, "
-                    "largest %.2e in contact (end below %.0e: %s); lower "
+                    "largest %.2e in contact (end below %.1e: %s); lower "
                     "block's mean v_y %.4f m/s\n",
                     safety,
                     contact.stable_time_step(),
@@ -242,7 +245,13 @@ main(int argc, char **argv)
                     tolerance,
                     yes_no[std::abs(final_E) < tolerance],
                     v_lower / m_lower);
+        end_errors.push_back(std::abs(final_E));
       }
+    const double ratio = end_errors[1] / end_errors[2];
+    std::printf("  end error at 0.1 over that at 0.05: %.2f (second order: "
+                "4; between 3 and 6: %s)\n",
+                ratio,
+                yes_no[ratio > 3. && ratio < 6.]);
   }
   return 0;
 }

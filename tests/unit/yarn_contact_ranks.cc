@@ -108,8 +108,8 @@ main(int argc, char **argv)
                   s.faces.size(),
                   steps,
                   dt);
-      std::printf("up to %u contacts; largest nodal force %.6e N; largest "
-                  "contact energy %.6e J; dissipated %.6e J; %u rebuilds\n",
+      std::printf("up to %u contacts; largest nodal force %.3e N; largest "
+                  "contact energy %.3e J; dissipated %.3e J; %u rebuilds\n",
                   most,
                   largest,
                   energy,

@@ -183,7 +183,10 @@ namespace YarnImpact
         unsigned int begin = 0, end = 0;
         bool touching     = false;
         double history[3] = {0., 0., 0.};
-        double energy     = 0.;
+        /** Normal stiffness, fixed when the contact starts [N/m]. */
+        double stiffness = 0.;
+        /** Energy stored at the last evaluation [J]. */
+        double energy = 0.;
       };
 
       /** Gather every node's position and velocity from the owned ones
