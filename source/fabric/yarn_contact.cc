@@ -161,41 +161,6 @@ namespace YarnImpact
     }
 
 
-    void
-    YarnContact::gather(const std::vector<double> &x,
-                        const std::vector<double> &v)
-    {
-      // Positions and velocities of every surface node on every rank.
-      std::vector<double> mine(6 * owned.size()), all(6 * surface.n_nodes());
-      for (unsigned int k = 0; k < owned.size(); ++k)
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            mine[6 * k + d]     = x[3 * k + d];
-            mine[6 * k + 3 + d] = v[3 * k + d];
-          }
-      std::vector<int> n6(counts.size()), offset6(counts.size());
-      for (unsigned int r = 0; r < counts.size(); ++r)
-        {
-          n6[r]      = 6 * counts[r];
-          offset6[r] = 6 * displacements[r];
-        }
-      MPI_Allgatherv(mine.data(),
-                     mine.size(),
-                     MPI_DOUBLE,
-                     all.data(),
-                     n6.data(),
-                     offset6.data(),
-                     MPI_DOUBLE,
-                     communicator);
-      for (unsigned int k = 0; k < gather_order.size(); ++k)
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            position[3 * gather_order[k] + d] = all[6 * k + d];
-            velocity[3 * gather_order[k] + d] = all[6 * k + 3 + d];
-          }
-    }
-
-
     dealii::Tensor<1, 3>
     YarnContact::area_vector(const unsigned int node) const
     {
@@ -341,9 +306,16 @@ namespace YarnImpact
       if (x.size() != 3 * owned.size() || v.size() != x.size() ||
           force.size() != x.size())
         throw std::invalid_argument("yarn contact: 3 values per owned node");
-      gather(x, v);
-      if (lists_may_miss())
-        rebuild();
+      // Between rebuilds only the nodes this rank's contacts need come
+      // from their owners; a rebuild gathers every node.
+      if (lists_may_miss(x))
+        {
+          gather(x, v);
+          rebuild();
+          set_up_exchange();
+        }
+      else
+        exchange(x, v);
       // The slots in one global order (node, then yarn) on every rank:
       // each node's force sums its terms in the same order on any
       // partition.

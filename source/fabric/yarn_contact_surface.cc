@@ -117,26 +117,6 @@ namespace YarnImpact
     }
 
 
-    bool
-    YarnContact::lists_may_miss() const
-    {
-      // Every rank holds every position: the same answer everywhere,
-      // without a reduction.
-      if (!built)
-        return true;
-      const double half_skin2 = 0.25 * parameters.skin * parameters.skin;
-      for (unsigned int i = 0; i < position.size(); i += 3)
-        {
-          const double d0 = position[i] - built_position[i];
-          const double d1 = position[i + 1] - built_position[i + 1];
-          const double d2 = position[i + 2] - built_position[i + 2];
-          if (d0 * d0 + d1 * d1 + d2 * d2 > half_skin2)
-            return true;
-        }
-      return false;
-    }
-
-
     void
     YarnContact::rebuild()
     {

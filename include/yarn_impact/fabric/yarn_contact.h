@@ -108,11 +108,13 @@ namespace YarnImpact
      * criterion that misses no contact.
      *
      * MPI: the surface and its topology are known to every rank; each
-     * rank owns some nodes and gives their positions and velocities, all
-     * ranks gather them (the surface is small beside the volume); each
-     * rank evaluates, in one global order, every contact that touches one
-     * of its nodes, and keeps its own nodes' forces, so that any number of
-     * ranks gives the same forces bit for bit.
+     * rank owns some nodes and gives their positions and velocities; at
+     * a rebuild every rank gathers all of them (6 doubles a surface node,
+     * once per skin/2 of motion), between rebuilds only those its
+     * contacts need, from their owners; each rank evaluates, in one global
+     * order, every contact that touches one of its nodes, and keeps its own
+     * nodes' forces, so that any number of ranks gives the same forces bit for
+     * bit.
      */
     class YarnContact
     {
@@ -195,9 +197,23 @@ namespace YarnImpact
       gather(const std::vector<double> &x, const std::vector<double> &v);
 
       /** Whether a node has moved more than skin/2 since the last
-       * rebuild (or there was none): then the lists may miss a contact. */
+       * rebuild (or there was none), from the owned nodes' positions @p x
+       * [m] on every rank: then the lists may miss a contact. The same
+       * answer on every rank. Collective. */
       bool
-      lists_may_miss() const;
+      lists_may_miss(const std::vector<double> &x) const;
+
+      /** After a rebuild: which owned nodes each rank needs (the nodes of
+       * its slots' candidate faces and of their nodes' own faces), and
+       * which it receives. Collective. */
+      void
+      set_up_exchange();
+
+      /** Between rebuilds: the owned nodes' positions @p x [m] and
+       * velocities @p v [m/s] into `position` and `velocity`, and the
+       * needed nodes' from their owners. Collective. */
+      void
+      exchange(const std::vector<double> &x, const std::vector<double> &v);
 
       /** Build the slots from bins of the faces' grown boxes, carrying
        * the touching contacts' histories over. Collective. */
@@ -227,7 +243,14 @@ namespace YarnImpact
       /** Every rank's owned count and nodes, in gather order. */
       std::vector<int> counts, displacements;
       std::vector<unsigned int> gather_order;
-      /** Every node's current position [m] and velocity [m/s], 3 each. */
+      /** Owned nodes sent to and nodes received from each rank, with
+       * the counts and offsets of their MPI_Alltoallv [-]. */
+      std::vector<unsigned int> send_nodes, receive_nodes;
+      std::vector<int> send_counts, send_offsets, receive_counts,
+        receive_offsets;
+      /** Every node's current position [m] and velocity [m/s], 3 each
+       * (those a rank neither owns nor needs are stale between
+       * rebuilds). */
       std::vector<double> position, velocity;
       /** Positions at the last rebuild [m]. */
       std::vector<double> built_position;
