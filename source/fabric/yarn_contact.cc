@@ -44,7 +44,7 @@ namespace YarnImpact
        * @p p by Newton's method on (p - X) . X_xi = (p - X) . X_eta = 0,
        * from the centre; false if it lies outside the face (beyond a
        * tolerance of 1e-9 in the face's coordinates, so that a node on an
-       * edge still finds a face) or Newton fails.
+       * edge still finds a face) or Newton has not converged.
        */
       bool
       project(const double *c[4], const double *p, Projection &out)
@@ -99,7 +99,16 @@ namespace YarnImpact
         for (unsigned int d = 0; d < 3; ++d)
           out.n[d] /= length;
         out.gap = dot(r, out.n);
-        return true;
+        // Converged: x_s - X along the normal, within 1e-8 of the face's
+        // size (Newton may stall on a warped face far from the point; the
+        // search's proof needs x_s = X + g n).
+        double tangential = 0.;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            const double t = r[d] - out.gap * out.n[d];
+            tangential += t * t;
+          }
+        return tangential <= 1e-16 * (dot(Xxi, Xxi) + dot(Xeta, Xeta));
       }
     } // namespace
 
