@@ -375,6 +375,43 @@ namespace YarnImpact
     }
 
 
+    void
+    YarnContact::save(Checkpoint::Writer &out) const
+    {
+      out.tag("yarn contact");
+      std::vector<double> touching, work;
+      for (const Slot &slot : slots)
+        if (slot.touching && is_owned[slot.node])
+          touching.insert(touching.end(),
+                          {double(slot.node),
+                           double(slot.yarn),
+                           slot.history[0],
+                           slot.history[1],
+                           slot.history[2],
+                           slot.stiffness});
+      for (const unsigned int node : owned)
+        work.push_back(node_dissipated[node]);
+      out.put(touching);
+      out.put(work);
+    }
+
+
+    void
+    YarnContact::load(Checkpoint::Reader &in)
+    {
+      in.tag("yarn contact");
+      std::vector<double> touching, work(owned.size());
+      in.get(touching);
+      in.get_same_size(work, "dissipated work of the yarn contact's nodes");
+      for (unsigned int k = 0; k < owned.size(); ++k)
+        node_dissipated[owned[k]] = work[k];
+      loaded = touching;
+      slots.clear();
+      slot_faces.clear();
+      built = false;
+    }
+
+
     unsigned int
     YarnContact::n_touching() const
     {

@@ -123,7 +123,8 @@ namespace YarnImpact
       // The histories of the touching contacts, from their nodes' owners
       // (a node's owner evaluates all its contacts): a rank that now
       // evaluates a contact it did not before gets its history too.
-      std::vector<double> mine, all;
+      std::vector<double> mine = std::move(loaded), all;
+      loaded.clear();
       for (const Slot &slot : slots)
         if (slot.touching && is_owned[slot.node])
           mine.insert(mine.end(),

@@ -10,7 +10,9 @@
 // force is compared bit for bit with the one-rank contact's, and so are
 // the contact energy and the dissipated work. And the one-rank contact's
 // forces are those of a contact with a skin 40 times longer, whose lists
-// hold every contact by far: the short lists miss none. One expected
+// hold every contact by far: the short lists miss none. And a contact
+// restarted at step 180 from the distributed one's checkpoint (save, load)
+// gives the same forces and dissipation from then on. One expected
 // output for 1 and 2 ranks.
 
 #include <yarn_impact/fabric/woven_patch.h>
@@ -23,6 +25,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <numeric>
 
 using namespace YarnImpact;
@@ -76,9 +79,11 @@ main(int argc, char **argv)
     return part;
   };
 
-  unsigned int different = 0, missed = 0, most = 0;
+  unsigned int different = 0, missed = 0, most = 0, after_restart = 0;
+  std::unique_ptr<Fabric::YarnContact> restarted;
+  unsigned int touching_at_restart = 0;
   double largest = 0., energy = 0.;
-  const unsigned int steps = 600;
+  const unsigned int steps = 600, restart_step = 180;
   for (unsigned int step = 0; step <= steps; ++step)
     {
       if (step > 0)
@@ -89,11 +94,31 @@ main(int argc, char **argv)
           }
       f.assign(3 * n, 0.);
       serial.add_forces(x, v, dt, f);
+      // At step 180, among 32 touching contacts, a contact restarted
+      // from the distributed one's checkpoint: from then on, the same
+      // forces bit for bit.
+      if (step == restart_step)
+        {
+          touching_at_restart = parallel.n_touching();
+          Checkpoint::Writer out;
+          parallel.save(out);
+          restarted = std::make_unique<Fabric::YarnContact>(prm, s, mine, comm);
+          Checkpoint::Reader in("memory", out.contents());
+          restarted->load(in);
+        }
       std::vector<double> g(3 * mine.size(), 0.), h(3 * n, 0.);
       wide.add_forces(x, v, dt, h);
       missed += std::memcmp(h.data(), f.data(), f.size() * sizeof(double)) != 0;
       parallel.add_forces(owned_part(x), owned_part(v), dt, g);
       const std::vector<double> expected = owned_part(f);
+      if (restarted)
+        {
+          std::vector<double> r(3 * mine.size(), 0.);
+          restarted->add_forces(owned_part(x), owned_part(v), dt, r);
+          after_restart +=
+            std::memcmp(r.data(), g.data(), g.size() * sizeof(double)) != 0;
+          after_restart += restarted->dissipated() != parallel.dissipated();
+        }
       different +=
         std::memcmp(g.data(), expected.data(), g.size() * sizeof(double)) != 0;
       for (const double value : f)
@@ -108,7 +133,8 @@ main(int argc, char **argv)
         for (unsigned int i = 0; i < 3 * n; ++i)
           v[i] += 0.5 * dt * f[i] / s.mass[i / 3];
     }
-  different = dealii::Utilities::MPI::sum(different, comm);
+  different     = dealii::Utilities::MPI::sum(different, comm);
+  after_restart = dealii::Utilities::MPI::sum(after_restart, comm);
   if (rank == 0)
     {
       std::printf("woven patch 2 x 2: %u surface nodes, %zu faces; %u steps "
@@ -128,6 +154,12 @@ main(int argc, char **argv)
                   "rebuilds): %s\n",
                   wide.n_rebuilds(),
                   yes_no[missed == 0]);
+      std::printf("restarted from a checkpoint at step %u (%u contacts "
+                  "touching): the same forces and dissipation bit for bit: "
+                  "%s\n",
+                  restart_step,
+                  touching_at_restart,
+                  yes_no[after_restart == 0]);
       std::printf("forces, energy and dissipation the same bit for bit as "
                   "on one rank: %s\n",
                   yes_no[different == 0]);

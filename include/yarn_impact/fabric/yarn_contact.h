@@ -2,6 +2,7 @@
 #define yarn_impact_fabric_yarn_contact_h
 
 #include <yarn_impact/contact/contact_law.h>
+#include <yarn_impact/core/checkpoint.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -175,6 +176,21 @@ namespace YarnImpact
       unsigned int
       n_touching() const;
 
+      /** Write the contact's state to a checkpoint: the touching
+       * contacts whose node this rank owns (node, other yarn, tangential
+       * history [m], normal stiffness [N/m]) and each owned node's
+       * dissipated work [J]. The candidate lists are not written: they are
+       * built again after load(), and longer or shorter lists give the
+       * same forces. */
+      void
+      save(Checkpoint::Writer &out) const;
+
+      /** Read what save() wrote on this rank, with the same owned nodes;
+       * the next add_forces() builds the lists and hands the histories to
+       * every rank that evaluates their contacts. */
+      void
+      load(Checkpoint::Reader &in);
+
     private:
       /** A possible contact: a node against the candidate faces of one
        * other yarn, with its tangential history. */
@@ -260,6 +276,9 @@ namespace YarnImpact
       std::vector<unsigned int> slot_faces;
       /** Damping and slip work of each owned node as a slave [J]. */
       std::vector<double> node_dissipated;
+      /** Touching contacts read by load(), 6 doubles each, for the next
+       * rebuild. */
+      std::vector<double> loaded;
       unsigned int rebuilds = 0;
       bool built            = false;
     };
