@@ -125,7 +125,7 @@ namespace YarnImpact
       RunSummary summary;
       static_cast<RunResult &>(summary) = result;
       summary.regression_format =
-        p.output.verbosity == YarnImpact::Parameters::Verbosity::test;
+        YarnImpact::Parameters::deterministic(p.output.verbosity);
       const auto smith =
         smith_solution(axial, p.projectile.initial_velocity, p.projectile.mass);
       const double t     = result.end_time;

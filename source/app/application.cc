@@ -387,7 +387,9 @@ namespace YarnImpact
                             "wave_fronts.png from comparison.csv\n";
           }
         if (is_root)
-          out << summary_text.str();
+          Parameters::print_summary_text(summary_text.str(),
+                                         output.verbosity,
+                                         out);
         collective_output(MPI_COMM_WORLD, [&] {
           if (is_root)
             write_file_atomically(output.directory + "/summary.txt",

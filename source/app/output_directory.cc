@@ -279,8 +279,7 @@ namespace YarnImpact
                     break;
                   }
               // Test verbosity prints only what every run prints alike.
-              if (error.empty() &&
-                  output.verbosity != Parameters::Verbosity::test)
+              if (error.empty() && !Parameters::deterministic(output.verbosity))
                 out << "Output/Overwrite: removed the " << earlier.size()
                     << " output files of an earlier run from '" << dir << "'\n";
             }

@@ -166,7 +166,7 @@ namespace YarnImpact
   ImpactSimulation::Implementation::set_up(Loop &loop, TimerOutput &timer)
   {
     const auto &p      = parameters;
-    const bool testing = p.output.verbosity == Parameters::Verbosity::test;
+    const bool testing = Parameters::deterministic(p.output.verbosity);
     std::ostringstream setup_sink;
     {
       TimerOutput::Scope scope(timer, "set-up");
@@ -242,7 +242,7 @@ namespace YarnImpact
                         loop.force,
                         loop.result,
                         loop.stop_reason);
-        if (p.output.verbosity != Parameters::Verbosity::test)
+        if (!Parameters::deterministic(p.output.verbosity))
           out << "[" << name << "] restarted from its checkpoint at t = "
               << schedule.time() * 1e6 << " us, step " << schedule.step()
               << (checkpoint_info.completed ? " (its run had finished)" : "")
@@ -462,7 +462,7 @@ namespace YarnImpact
     result.end_time       = loop.schedule.time();
     result.wall_time      = loop.wall_timer.wall_time();
     result.final_velocity = projectile.impact_speed();
-    if (parameters.output.verbosity != Parameters::Verbosity::test)
+    if (!Parameters::deterministic(parameters.output.verbosity))
       out << "[" << model->name() << "] stopped: " << loop.stop_reason << '\n';
     return result;
   }

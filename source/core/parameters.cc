@@ -6,6 +6,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
+#include <ostream>
 #include <sstream>
 
 namespace YarnImpact
@@ -296,10 +297,12 @@ namespace YarnImpact
       prm.declare_entry(
         "Verbosity",
         "normal",
-        Patterns::Selection("normal|quiet|test"),
+        Patterns::Selection("normal|quiet|test|checks"),
         "normal: set-up, progress lines with ETA and a timing summary; "
         "quiet: set-up and summary; test: the deterministic, scaled summary "
-        "only (used by the regression tests).");
+        "only; checks: as test, but only the summary's titles and check "
+        "lines on the screen, the whole summary in summary.txt (used by the "
+        "tests).");
       prm.leave_subsection();
     }
 
@@ -329,8 +332,34 @@ namespace YarnImpact
       const std::string v = prm.get("Verbosity");
       verbosity           = (v == "normal"  ? Verbosity::normal
                              : v == "quiet" ? Verbosity::quiet
-                                            : Verbosity::test);
+                             : v == "test"  ? Verbosity::test
+                                            : Verbosity::checks);
       prm.leave_subsection();
+    }
+
+
+    bool
+    deterministic(const Verbosity v)
+    {
+      return v == Verbosity::test || v == Verbosity::checks;
+    }
+
+
+    void
+    print_summary_text(const std::string &text,
+                       const Verbosity v,
+                       std::ostream &out)
+    {
+      if (v != Verbosity::checks)
+        {
+          out << text;
+          return;
+        }
+      std::istringstream in(text);
+      for (std::string line; std::getline(in, line);)
+        if ((!line.empty() && line[0] != ' ') ||
+            line.compare(0, 8, "  check ") == 0)
+          out << line << '\n';
     }
 
 

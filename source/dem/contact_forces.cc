@@ -27,15 +27,16 @@ namespace YarnImpact
           {
             const std::uint32_t *__restrict pstart = B.pstart.data();
             Pair *__restrict pairs                 = B.pairs.data();
-            double *__restrict pxi                 = B.pxi.data();
-            for (std::size_t i = B.b; i < B.e; ++i)
+            double *__restrict pair_tangential_displacement =
+              B.pair_tangential_displacement.data();
+            for (std::size_t i = B.row_sphere_begin; i < B.row_sphere_end; ++i)
               {
-                const std::uint32_t p0 = pstart[i - B.b],
-                                    p1 = pstart[i - B.b + 1];
+                const std::uint32_t p0 = pstart[i - B.row_sphere_begin],
+                                    p1 = pstart[i - B.row_sphere_begin + 1];
                 if (p0 == p1)
                   continue;
-                const double xi = x[3 * i], yi = x[3 * i + 1],
-                             zi = x[3 * i + 2];
+                const double x_i = x[3 * i], y_i = x[3 * i + 1],
+                             z_i = x[3 * i + 2];
                 // The force on i is summed over its row first, then added;
                 // so is the energy its row dissipates.
                 double fx = 0., fy = 0., fz = 0., row_diss = 0.;
@@ -43,27 +44,28 @@ namespace YarnImpact
                   {
                     const std::size_t j = pairs[p].j;
                     double e[3], f[3], diss = 0.;
-                    separation(xi, yi, zi, x + 3 * j, 1., 1., e);
-                    if (!pair_contact_force(law,
-                                            d,
-                                            d2,
-                                            e,
-                                            v + 3 * i,
-                                            v + 3 * j,
-                                            1.,
-                                            1.,
-                                            dt,
-                                            &pxi[3 * p],
-                                            f,
-                                            diss))
+                    separation(x_i, y_i, z_i, x + 3 * j, 1., 1., e);
+                    if (!pair_contact_force(
+                          law,
+                          d,
+                          d2,
+                          e,
+                          v + 3 * i,
+                          v + 3 * j,
+                          1.,
+                          1.,
+                          dt,
+                          &pair_tangential_displacement[3 * p],
+                          f,
+                          diss))
                       {
                         // Separated: the contact ends with its history.
                         if (pairs[p].w < 0.f)
                           {
-                            pairs[p].w     = -pairs[p].w;
-                            pxi[3 * p]     = 0.;
-                            pxi[3 * p + 1] = 0.;
-                            pxi[3 * p + 2] = 0.;
+                            pairs[p].w                          = -pairs[p].w;
+                            pair_tangential_displacement[3 * p] = 0.;
+                            pair_tangential_displacement[3 * p + 1] = 0.;
+                            pair_tangential_displacement[3 * p + 2] = 0.;
                           }
                         continue;
                       }
@@ -103,7 +105,8 @@ namespace YarnImpact
         for (ListBlock &B : blocks)
           {
             std::vector<MirrorPair> &mpairs = B.mpairs;
-            std::vector<double> &mxi        = B.mxi;
+            std::vector<double> &mirror_tangential_displacement =
+              B.mirror_tangential_displacement;
             for (std::size_t p = 0; p < mpairs.size(); ++p)
               {
                 MirrorPair &mp      = mpairs[p];
@@ -127,14 +130,16 @@ namespace YarnImpact
                                         sx,
                                         sz,
                                         dt,
-                                        &mxi[3 * p],
+                                        &mirror_tangential_displacement[3 * p],
                                         f,
                                         diss))
                   {
                     if (mp.active)
                       {
-                        mp.active  = false;
-                        mxi[3 * p] = mxi[3 * p + 1] = mxi[3 * p + 2] = 0.;
+                        mp.active = false;
+                        mirror_tangential_displacement[3 * p] =
+                          mirror_tangential_displacement[3 * p + 1] =
+                            mirror_tangential_displacement[3 * p + 2] = 0.;
                       }
                     continue;
                   }

@@ -67,7 +67,7 @@ namespace YarnImpact
           // The highest sphere surface of the packing: the projectile starts
           // touching it. Every rank holds the whole fibre layout.
           double top = -std::numeric_limits<double>::max();
-          for (const double y : chains.fy)
+          for (const double y : chains.fibre_y0)
             top = std::max(top, y + chains.radius);
           return top;
         }
@@ -179,18 +179,19 @@ namespace YarnImpact
           v.n_stations    = chains.n_st;
           v.station_begin = decomposition.st_begin;
           v.station_end   = decomposition.st_end;
-          v.station_x     = &chains.sx0;
-          v.fibre_y       = &chains.fy;
-          v.fibre_z       = &chains.fz;
+          v.station_x     = &chains.station_x0;
+          v.fibre_y       = &chains.fibre_y0;
+          v.fibre_z       = &chains.fibre_z0;
           v.position      = spheres.pos.data();
           v.velocity      = spheres.vel.data();
-          v.force         = spheres.frc.data();
+          v.force         = spheres.force.data();
           v.broken        = spheres.broken.data();
           v.local_index   = [this](const unsigned int s, const unsigned int f) {
             return decomposition.local_index(s, f);
           };
           v.inverse_mass = [this](const unsigned int s, const unsigned int f) {
-            return chains.finv[f] * chains.sinv[s];
+            return chains.fibre_inverse_mass[f] *
+                   chains.station_inverse_mass_factor[s];
           };
           return v;
         }
@@ -354,9 +355,9 @@ namespace YarnImpact
         const unsigned int n_st   = chains.n_st;
         spheres.pos.assign(3 * n_local, 0.);
         spheres.vel.assign(3 * n_local, 0.);
-        spheres.frc.assign(3 * n_local, 0.);
+        spheres.force.assign(3 * n_local, 0.);
         spheres.broken.assign(n_local, 0);
-        spheres.xi_p.assign(3 * n_local, 0.);
+        spheres.projectile_tangential_displacement.assign(3 * n_local, 0.);
         spheres.proj_step.assign(n_local, 0);
         spheres.dissipated.assign(n_local, 0.);
         spheres.break_time.assign(n_local, 0.);
@@ -367,9 +368,9 @@ namespace YarnImpact
           for (unsigned int f = 0; f < chains.nf; ++f)
             {
               const std::size_t i    = decomposition.local_index(s, f);
-              spheres.pos[3 * i]     = chains.sx0[s];
-              spheres.pos[3 * i + 1] = chains.fy[f];
-              spheres.pos[3 * i + 2] = chains.fz[f];
+              spheres.pos[3 * i]     = chains.station_x0[s];
+              spheres.pos[3 * i + 1] = chains.fibre_y0[f];
+              spheres.pos[3 * i + 2] = chains.fibre_z0[f];
             }
         for (unsigned int s = decomposition.st_begin; s < decomposition.st_end;
              ++s)
@@ -484,7 +485,7 @@ namespace YarnImpact
 
         const double *x = spheres.pos.data();
         const double *v = spheres.vel.data();
-        double *F       = spheres.frc.data();
+        double *F       = spheres.force.data();
         // The energy dissipated, added to each sphere's account.
         double *dissipated = spheres.dissipated.data();
         {

@@ -38,12 +38,12 @@ namespace YarnImpact
               const bool on_plane = z_sym && centres.z[a] == 0.;
               // Touching neighbours get a gap of 1e-9 d, so that they do not
               // start as contacts with round-off overlaps.
-              fy.push_back(centres.y[a] * (1. + 1e-9));
-              fz.push_back(centres.z[a] * (1. + 1e-9));
-              fw.push_back(on_plane ? 0.5 : 1.);
+              fibre_y0.push_back(centres.y[a] * (1. + 1e-9));
+              fibre_z0.push_back(centres.z[a] * (1. + 1e-9));
+              fibre_symmetry_weight.push_back(on_plane ? 0.5 : 1.);
               zmask.push_back(on_plane ? 0. : 1.);
             }
-        nf = fy.size();
+        nf = fibre_y0.size();
 
         // Stations: an even number of equal trusses over the length, so
         // that a cross-section lies on the plane x = 0.
@@ -88,9 +88,10 @@ namespace YarnImpact
               clamp_part ? s == n_st - 1
                          : (!coupled && s == n_st - 1) || (!x_sym && s == 0);
             const double weight = coupled ? prm.station_weight[s] : 1.;
-            sx0.push_back(x);
-            sw.push_back(plane ? 0.5 : 1.);
-            sinv.push_back(clamped ? 0. : (plane ? 2. : 1.) / weight);
+            station_x0.push_back(x);
+            station_symmetry_weight.push_back(plane ? 0.5 : 1.);
+            station_inverse_mass_factor.push_back(
+              clamped ? 0. : (plane ? 2. : 1.) / weight);
             xmask.push_back(plane ? 0. : 1.);
             cw.push_back(weight);
             if (s + 1 < n_st)
@@ -101,12 +102,14 @@ namespace YarnImpact
         sphere_mass = y.fibre_density * fibre_area * L0;
         truss_k     = y.fibre_modulus * fibre_area / L0;
         for (unsigned int f = 0; f < nf; ++f)
-          finv.push_back(1. / (sphere_mass * fw[f]));
+          fibre_inverse_mass.push_back(
+            1. / (sphere_mass * fibre_symmetry_weight[f]));
 
         total_mass = 0.;
         for (unsigned int f = 0; f < nf; ++f)
           for (unsigned int s = 0; s < n_st; ++s)
-            total_mass += sphere_mass * fw[f] * sw[s] * cw[s];
+            total_mass += sphere_mass * fibre_symmetry_weight[f] *
+                          station_symmetry_weight[s] * cw[s];
         total_mass *= factor;
       }
     } // namespace internal

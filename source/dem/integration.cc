@@ -29,12 +29,12 @@ namespace YarnImpact
         spheres.pending_kick  = 0.;
         double *__restrict x  = spheres.pos.data();
         double *__restrict v  = spheres.vel.data();
-        double *__restrict F  = spheres.frc.data();
+        double *__restrict F  = spheres.force.data();
         const unsigned int nf = chains.nf;
         for (unsigned int s = decomposition.st_begin; s < decomposition.st_end;
              ++s)
           {
-            const double as      = kick * chains.sinv[s];
+            const double as      = kick * chains.station_inverse_mass_factor[s];
             const double xm      = chains.xmask[s];
             const std::size_t b0 = decomposition.local_index(s, 0);
             ListBlock &B         = lists.block_of(b0);
@@ -42,7 +42,7 @@ namespace YarnImpact
             for (unsigned int f = 0; f < nf; ++f)
               {
                 const std::size_t i = b0 + f;
-                const double a      = as * chains.finv[f];
+                const double a      = as * chains.fibre_inverse_mass[f];
                 v[3 * i] += a * xm * F[3 * i];
                 v[3 * i + 1] += a * F[3 * i + 1];
                 v[3 * i + 2] += a * chains.zmask[f] * F[3 * i + 2];
@@ -66,7 +66,7 @@ namespace YarnImpact
       void
       clear_forces(const Decomposition &decomposition, Spheres &spheres)
       {
-        double *F = spheres.frc.data();
+        double *F = spheres.force.data();
         std::fill(F + 3 * decomposition.act_b, F + 3 * decomposition.own_b, 0.);
         std::fill(F + 3 * decomposition.own_e, F + 3 * decomposition.act_e, 0.);
         if (!spheres.forces_consumed)

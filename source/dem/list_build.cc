@@ -45,13 +45,14 @@ namespace YarnImpact
         B.stale = false;
         // The spheres of the build: rows and halo; the rows of the list
         // being replaced.
-        const std::size_t old_b = B.b, old_e = B.e;
-        B.b = local_index(B.row_begin, 0);
-        B.e = local_index(B.row_end, 0);
-        B.h = local_index(B.halo_end, 0);
-        rebuilt_rows += B.e - B.b;
-        const std::size_t sb = B.b, se = B.h, n_build = se - sb;
-        const double cut2 = cutoff * cutoff;
+        const std::size_t old_b = B.row_sphere_begin, old_e = B.row_sphere_end;
+        B.row_sphere_begin = local_index(B.row_begin, 0);
+        B.row_sphere_end   = local_index(B.row_end, 0);
+        B.halo_sphere_end  = local_index(B.halo_end, 0);
+        rebuilt_rows += B.row_sphere_end - B.row_sphere_begin;
+        const std::size_t sb = B.row_sphere_begin, se = B.halo_sphere_end,
+                          n_build = se - sb;
+        const double cut2         = cutoff * cutoff;
         // Bins along x over the spheres of the block (owned and ghosts).
         double xmin = infinity, xmax = -infinity;
         for (std::size_t i = sb; i < se; ++i)
@@ -64,8 +65,8 @@ namespace YarnImpact
         const unsigned int n_bins             = B.n_bins;
         std::vector<std::uint32_t> &bin_count = B.bin_count;
         bin_count.assign(n_bins, 0);
-        B.D_prev.assign(3 * n_bins, 0.);
-        B.D_sum.assign(3 * n_bins, 0.);
+        B.bin_mean_displacement.assign(3 * n_bins, 0.);
+        B.bin_displacement_sum.assign(3 * n_bins, 0.);
         B.r2_max = 0.;
         B.bin_of.resize(n_build);
         B.pos_build.resize(3 * n_build);
@@ -191,7 +192,7 @@ namespace YarnImpact
         // is in the halo, an owned one of the rows if both (after fibres
         // were cut and slid, the ghost layers and halos are whole slabs, but
         // few of their spheres are near an owned one or one of the rows).
-        const std::size_t row_e = B.e;
+        const std::size_t row_e = B.row_sphere_end;
         cell_partners.assign(n_cells, 0);
         for (std::size_t i = sb; i < se; ++i)
           cell_partners[cell_of[i - sb]] |= (owned(i) ? 1 : 0) |
@@ -251,8 +252,8 @@ namespace YarnImpact
                     const auto wanted = [need](const std::uint8_t f) {
                       return need == 0 || (f & need) != 0;
                     };
-                    const double xi = cell_x[k_i], yi = cell_y[k_i],
-                                 zi = cell_z[k_i];
+                    const double x_i = cell_x[k_i], y_i = cell_y[k_i],
+                                 z_i = cell_z[k_i];
                     CandidateRun runs[5];
                     unsigned int n_runs = 0;
                     if (wanted(row_flags))
@@ -264,9 +265,9 @@ namespace YarnImpact
                     if (bb < n_bins && bin_count[bb] > 0)
                       {
                         const long cy = static_cast<long>(
-                          std::floor((yi - bin_y0[bb]) * bin_ic[bb]));
+                          std::floor((y_i - bin_y0[bb]) * bin_ic[bb]));
                         const long cz_ = static_cast<long>(
-                          std::floor((zi - bin_z0[bb]) * bin_ic[bb]));
+                          std::floor((z_i - bin_z0[bb]) * bin_ic[bb]));
                         const long ny = bin_ny[bb], nz_ = bin_nz[bb];
                         const long c0 = std::max(0l, cz_ - 1),
                                    c1 = std::min(nz_ - 1, cz_ + 1);
@@ -302,8 +303,8 @@ namespace YarnImpact
                          ++q)
                       {
                         const std::uint32_t k = *q;
-                        const double ex = xi - cell_x[k], ey = yi - cell_y[k],
-                                     ez = zi - cell_z[k];
+                        const double ex = x_i - cell_x[k], ey = y_i - cell_y[k],
+                                     ez = z_i - cell_z[k];
                         if (ex * ex + ey * ey + ez * ez >= cut2)
                           continue;
                         const std::size_t j = cell_sphere[k];
@@ -322,18 +323,22 @@ namespace YarnImpact
         std::vector<std::uint32_t> &pstart     = B.pstart,
                                    &pstart_old = B.pstart_old;
         std::vector<Pair> &pairs = B.pairs, &pairs_old = B.pairs_old;
-        std::vector<double> &pxi = B.pxi, &pxi_old = B.pxi_old;
+        std::vector<double> &pair_tangential_displacement =
+                              B.pair_tangential_displacement,
+                            &pair_tangential_displacement_old =
+                              B.pair_tangential_displacement_old;
         std::swap(pstart, pstart_old);
         std::swap(pairs, pairs_old);
-        std::swap(pxi, pxi_old);
-        const std::size_t n_rows = B.e - B.b;
+        std::swap(pair_tangential_displacement,
+                  pair_tangential_displacement_old);
+        const std::size_t n_rows = B.row_sphere_end - B.row_sphere_begin;
         pstart.assign(n_rows + 1, 0);
         for (const auto &p : found)
           ++pstart[p.first - sb + 1];
         for (std::size_t r = 0; r < n_rows; ++r)
           pstart[r + 1] += pstart[r];
         pairs.resize(found.size());
-        pxi.assign(3 * found.size(), 0.);
+        pair_tangential_displacement.assign(3 * found.size(), 0.);
         {
           std::vector<std::uint32_t> &fill = cell_of; // scratch again
           fill.assign(pstart.begin(), pstart.end() - 1);
@@ -341,7 +346,7 @@ namespace YarnImpact
             pairs[fill[p.first - sb]++] = {p.second, 1.f};
         }
         const bool have_old = pstart_old.size() == old_e - old_b + 1;
-        for (std::size_t i = B.b; i < B.e; ++i)
+        for (std::size_t i = B.row_sphere_begin; i < B.row_sphere_end; ++i)
           {
             Pair *row             = pairs.data() + pstart[i - sb];
             const std::uint32_t n = pstart[i - sb + 1] - pstart[i - sb];
@@ -377,7 +382,8 @@ namespace YarnImpact
                     row[k].w            = -row[k].w;
                     const std::size_t p = pstart[i - sb] + k;
                     for (unsigned int c = 0; c < 3; ++c)
-                      pxi[3 * p + c] = pxi_old[3 * q + c];
+                      pair_tangential_displacement[3 * p + c] =
+                        pair_tangential_displacement_old[3 * q + c];
                   }
               }
           }
@@ -387,9 +393,13 @@ namespace YarnImpact
         // candidates below are every pair whose image distance can drop
         // below d while the criterion holds).
         std::vector<MirrorPair> &mpairs = B.mpairs, &mpairs_old = B.mpairs_old;
-        std::vector<double> &mxi = B.mxi, &mxi_old = B.mxi_old;
+        std::vector<double> &mirror_tangential_displacement =
+                              B.mirror_tangential_displacement,
+                            &mirror_tangential_displacement_old =
+                              B.mirror_tangential_displacement_old;
         std::swap(mpairs, mpairs_old);
-        std::swap(mxi, mxi_old);
+        std::swap(mirror_tangential_displacement,
+                  mirror_tangential_displacement_old);
         mpairs.clear();
         const auto add_mirror = [&](const std::size_t i,
                                     const std::size_t j,
@@ -474,7 +484,7 @@ namespace YarnImpact
                 }
           }
         std::sort(mpairs.begin(), mpairs.end(), mirror_less);
-        mxi.assign(3 * mpairs.size(), 0.);
+        mirror_tangential_displacement.assign(3 * mpairs.size(), 0.);
         std::size_t q = 0;
         for (std::size_t p = 0; p < mpairs.size(); ++p)
           {
@@ -487,7 +497,8 @@ namespace YarnImpact
               {
                 mpairs[p].active = true;
                 for (unsigned int c = 0; c < 3; ++c)
-                  mxi[3 * p + c] = mxi_old[3 * q + c];
+                  mirror_tangential_displacement[3 * p + c] =
+                    mirror_tangential_displacement_old[3 * q + c];
               }
           }
       }

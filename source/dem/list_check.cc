@@ -156,13 +156,14 @@ namespace YarnImpact
           checked_contacts += dec.own_factor(i, j);
           // Row i of the block whose rows hold i, sorted by j.
           const ListBlock &B = lists.block_of(i);
-          if (i < B.b || i >= B.e)
+          if (i < B.row_sphere_begin || i >= B.row_sphere_end)
             {
               missing(i, j, false);
               return;
             }
-          const Pair *row0 = B.pairs.data() + B.pstart[i - B.b],
-                     *row1 = B.pairs.data() + B.pstart[i - B.b + 1];
+          const Pair *row0 = B.pairs.data() + B.pstart[i - B.row_sphere_begin],
+                     *row1 =
+                       B.pairs.data() + B.pstart[i - B.row_sphere_begin + 1];
           const Pair *hit =
             std::lower_bound(row0,
                              row1,

@@ -138,7 +138,7 @@ namespace YarnImpact
         for (std::size_t i = decomposition.own_e; i < decomposition.act_e; ++i)
           accumulate_criterion(block_of(i), x, i);
         for (ListBlock &B : blocks)
-          for (std::size_t i = B.e; i < B.h; ++i)
+          for (std::size_t i = B.row_sphere_end; i < B.halo_sphere_end; ++i)
             accumulate_criterion(B, x, i);
       }
 
@@ -147,7 +147,8 @@ namespace YarnImpact
       NeighbourLists::list_bound(ListBlock &B)
       {
         // Criterion (doc/dem.md, "Neighbour lists"): with D_b the reference
-        // displacement of build bin b, r = max |Delta_i - D_b(i)| and
+        // displacement of build bin b (bin_mean_displacement),
+        // r = max |Delta_i - D_b(i)| and
         // g = max |D_{b+1} - D_b| over consecutive non-empty bins, no
         // unlisted pair can touch while 2 r + 2 g (+ 2 max|D_b,z| for mirror
         // pairs in z = 0, + 2 |D_0,x| for mirror pairs in x = 0) < skin.
@@ -159,12 +160,15 @@ namespace YarnImpact
               continue;
             if (prev >= 0)
               {
-                const double ex = B.D_prev[3 * b] - B.D_prev[3 * prev];
-                const double ey = B.D_prev[3 * b + 1] - B.D_prev[3 * prev + 1];
-                const double ez = B.D_prev[3 * b + 2] - B.D_prev[3 * prev + 2];
+                const double ex = B.bin_mean_displacement[3 * b] -
+                                  B.bin_mean_displacement[3 * prev];
+                const double ey = B.bin_mean_displacement[3 * b + 1] -
+                                  B.bin_mean_displacement[3 * prev + 1];
+                const double ez = B.bin_mean_displacement[3 * b + 2] -
+                                  B.bin_mean_displacement[3 * prev + 2];
                 g = std::max(g, std::sqrt(ex * ex + ey * ey + ez * ez));
               }
-            dz   = std::max(dz, std::abs(B.D_prev[3 * b + 2]));
+            dz   = std::max(dz, std::abs(B.bin_mean_displacement[3 * b + 2]));
             prev = b;
           }
         // Rounding of the single-precision build positions.
@@ -173,15 +177,19 @@ namespace YarnImpact
         last_g              = std::max(last_g, g);
         // Mirror pairs in x = 0: 2 |D_0,x| of bin 0 (which starts at x = 0).
         const double dx0 =
-          (B.holds_plane && B.n_bins > 0 ? std::abs(B.D_prev[0]) : 0.);
+          (B.holds_plane && B.n_bins > 0 ? std::abs(B.bin_mean_displacement[0])
+                                         : 0.);
         const double bound = 2. * std::sqrt(B.r2_max) + 2. * g +
                              (chains.z_sym ? 2. * dz : 0.) + 2. * dx0 + margin;
         // New reference: the mean displacement of each bin.
         for (unsigned int b = 0; b < B.n_bins; ++b)
           if (B.bin_count[b] > 0)
             for (unsigned int c = 0; c < 3; ++c)
-              B.D_prev[3 * b + c] = B.D_sum[3 * b + c] / B.bin_count[b];
-        std::fill(B.D_sum.begin(), B.D_sum.end(), 0.);
+              B.bin_mean_displacement[3 * b + c] =
+                B.bin_displacement_sum[3 * b + c] / B.bin_count[b];
+        std::fill(B.bin_displacement_sum.begin(),
+                  B.bin_displacement_sum.end(),
+                  0.);
         B.r2_max = 0.;
         return bound;
       }
@@ -192,19 +200,25 @@ namespace YarnImpact
       {
         // C's rows follow B's: its lists append to B's, with their
         // tangential history, and B is rebuilt from them.
-        AssertThrow(B.e == C.b, dealii::ExcInternalError());
+        AssertThrow(B.row_sphere_end == C.row_sphere_begin,
+                    dealii::ExcInternalError());
         const auto offset = static_cast<std::uint32_t>(B.pairs.size());
         for (std::size_t r = 1; r < C.pstart.size(); ++r)
           B.pstart.push_back(C.pstart[r] + offset);
         B.pairs.insert(B.pairs.end(), C.pairs.begin(), C.pairs.end());
-        B.pxi.insert(B.pxi.end(), C.pxi.begin(), C.pxi.end());
+        B.pair_tangential_displacement.insert(
+          B.pair_tangential_displacement.end(),
+          C.pair_tangential_displacement.begin(),
+          C.pair_tangential_displacement.end());
         if (!C.mpairs.empty())
           {
             std::vector<std::size_t> order(B.mpairs.size() + C.mpairs.size());
             std::vector<MirrorPair> mp(B.mpairs);
             mp.insert(mp.end(), C.mpairs.begin(), C.mpairs.end());
-            std::vector<double> xi(B.mxi);
-            xi.insert(xi.end(), C.mxi.begin(), C.mxi.end());
+            std::vector<double> merged_xi_t(B.mirror_tangential_displacement);
+            merged_xi_t.insert(merged_xi_t.end(),
+                               C.mirror_tangential_displacement.begin(),
+                               C.mirror_tangential_displacement.end());
             for (std::size_t k = 0; k < order.size(); ++k)
               order[k] = k;
             std::sort(order.begin(),
@@ -213,15 +227,16 @@ namespace YarnImpact
                         return mirror_less(mp[a], mp[b]);
                       });
             B.mpairs.resize(order.size());
-            B.mxi.resize(3 * order.size());
+            B.mirror_tangential_displacement.resize(3 * order.size());
             for (std::size_t k = 0; k < order.size(); ++k)
               {
                 B.mpairs[k] = mp[order[k]];
                 for (unsigned int c = 0; c < 3; ++c)
-                  B.mxi[3 * k + c] = xi[3 * order[k] + c];
+                  B.mirror_tangential_displacement[3 * k + c] =
+                    merged_xi_t[3 * order[k] + c];
               }
           }
-        B.e                   = C.e;
+        B.row_sphere_end      = C.row_sphere_end;
         B.s_end               = C.s_end;
         B.row_end             = C.row_end;
         B.halo_end            = std::max(B.halo_end, C.halo_end);
@@ -290,7 +305,7 @@ namespace YarnImpact
         const unsigned long n_pairs = n_listed_pairs();
         unsigned long n_rows        = 0;
         for (const ListBlock &B : blocks)
-          n_rows += B.e - B.b;
+          n_rows += B.row_sphere_end - B.row_sphere_begin;
         const unsigned long mine[3] = {n_rebuilds,
                                        (rebuilt_rows + n_rows / 2) /
                                          std::max(1ul, n_rows),

@@ -47,7 +47,7 @@ namespace YarnImpact
       ObservablesMeter::record_initial_width()
       {
         const unsigned int nf = chains.nf, s_impact = chains.s_impact;
-        const std::vector<double> &fz = chains.fz;
+        const std::vector<double> &fibre_z0 = chains.fibre_z0;
         initial_width.assign(chains.n_prof, 0.);
         for (unsigned int s = decomposition.st_begin; s < decomposition.st_end;
              ++s)
@@ -55,8 +55,8 @@ namespace YarnImpact
             double zmin = infinity, zmax = -infinity;
             for (unsigned int f = 0; f < nf; ++f)
               {
-                zmin = std::min(zmin, fz[f]);
-                zmax = std::max(zmax, fz[f]);
+                zmin = std::min(zmin, fibre_z0[f]);
+                zmax = std::max(zmax, fibre_z0[f]);
               }
             const unsigned int k = (s > s_impact ? s - s_impact : s_impact - s);
             initial_width[k]     = std::max(initial_width[k],
@@ -79,14 +79,17 @@ namespace YarnImpact
         const MPI_Comm comm         = decomposition.comm;
         const double d = chains.d, L0 = chains.L0, truss_k = chains.truss_k,
                      sphere_mass = chains.sphere_mass, factor = chains.factor;
-        const bool z_sym                            = chains.z_sym;
-        const std::vector<double> &fw               = chains.fw;
-        const std::vector<double> &sw               = chains.sw;
-        const std::vector<double> &fy               = chains.fy;
-        const std::vector<double> &pos              = spheres.pos;
-        const double *x                             = pos.data();
-        const std::vector<std::uint8_t> &broken     = spheres.broken;
-        const std::vector<double> &xi_p             = spheres.xi_p;
+        const bool z_sym = chains.z_sym;
+        const std::vector<double> &fibre_symmetry_weight =
+          chains.fibre_symmetry_weight;
+        const std::vector<double> &station_symmetry_weight =
+          chains.station_symmetry_weight;
+        const std::vector<double> &fibre_y0     = chains.fibre_y0;
+        const std::vector<double> &pos          = spheres.pos;
+        const double *x                         = pos.data();
+        const std::vector<std::uint8_t> &broken = spheres.broken;
+        const std::vector<double> &projectile_tangential_displacement =
+          spheres.projectile_tangential_displacement;
         const std::vector<std::uint64_t> &proj_step = spheres.proj_step;
         const std::uint64_t step_count              = spheres.step_count;
 
@@ -120,8 +123,9 @@ namespace YarnImpact
             for (unsigned int f = 0; f < nf; ++f)
               {
                 const std::size_t i = decomposition.local_index(s, f);
-                const double m = sphere_mass * fw[f] * sw[s] * chains.cw[s];
-                double v2      = 0.;
+                const double m      = sphere_mass * fibre_symmetry_weight[f] *
+                                 station_symmetry_weight[s] * chains.cw[s];
+                double v2 = 0.;
                 for (unsigned int c = 0; c < 3; ++c)
                   {
                     const double vc =
@@ -130,10 +134,11 @@ namespace YarnImpact
                   }
                 sums.add(kinetic, 0.5 * m * v2);
                 sums.add(dissipated, spheres.dissipated[i]);
-                defl = std::max(defl, fy[f] - pos[3 * i + 1]);
+                defl = std::max(defl, fibre_y0[f] - pos[3 * i + 1]);
                 sums.add(second_moment + k,
-                         fw[f] * pos[3 * i + 2] * pos[3 * i + 2]);
-                sums.add(second_moment + n_prof + k, fw[f]);
+                         fibre_symmetry_weight[f] * pos[3 * i + 2] *
+                           pos[3 * i + 2]);
+                sums.add(second_moment + n_prof + k, fibre_symmetry_weight[f]);
                 zmin = std::min(zmin, pos[3 * i + 2]);
                 zmax = std::max(zmax, pos[3 * i + 2]);
                 xsum += std::abs(pos[3 * i]);
@@ -143,7 +148,7 @@ namespace YarnImpact
                   {
                     if (broken[i])
                       {
-                        sums.add(failed, factor * fw[f]);
+                        sums.add(failed, factor * fibre_symmetry_weight[f]);
                         fibre_cut[f] = 1.;
                       }
                     else
@@ -151,8 +156,8 @@ namespace YarnImpact
                         double l;
                         const double e = truss_strain(x, i, nf, L0, &l);
                         sums.add(elastic,
-                                 0.5 * truss_k * fw[f] * chains.tw[s] *
-                                   (l - L0) * (l - L0));
+                                 0.5 * truss_k * fibre_symmetry_weight[f] *
+                                   chains.tw[s] * (l - L0) * (l - L0));
                         smax = std::max(smax, e);
                       }
                   }
@@ -172,25 +177,30 @@ namespace YarnImpact
         // sphere (the row of its list).
         for (const ListBlock &B : lists.blocks)
           {
-            const std::uint32_t *pstart           = B.pstart.data();
-            const std::vector<Pair> &pairs        = B.pairs;
-            const std::vector<double> &pxi        = B.pxi;
+            const std::uint32_t *pstart    = B.pstart.data();
+            const std::vector<Pair> &pairs = B.pairs;
+            const std::vector<double> &pair_tangential_displacement =
+              B.pair_tangential_displacement;
             const std::vector<MirrorPair> &mpairs = B.mpairs;
-            const std::vector<double> &mxi        = B.mxi;
-            for (std::size_t i = B.b; i < B.e; ++i)
-              for (std::uint32_t p = pstart[i - B.b]; p < pstart[i - B.b + 1];
+            const std::vector<double> &mirror_tangential_displacement =
+              B.mirror_tangential_displacement;
+            for (std::size_t i = B.row_sphere_begin; i < B.row_sphere_end; ++i)
+              for (std::uint32_t p = pstart[i - B.row_sphere_begin];
+                   p < pstart[i - B.row_sphere_begin + 1];
                    ++p)
                 if (pairs[p].w < 0.f && decomposition.owned(i))
                   {
                     const std::size_t j = pairs[p].j;
                     sums.add(contact,
-                             -pairs[p].w * pair_contact_energy(fibre_law,
-                                                               d,
-                                                               x + 3 * i,
-                                                               x + 3 * j,
-                                                               1.,
-                                                               1.,
-                                                               &pxi[3 * p]));
+                             -pairs[p].w *
+                               pair_contact_energy(
+                                 fibre_law,
+                                 d,
+                                 x + 3 * i,
+                                 x + 3 * j,
+                                 1.,
+                                 1.,
+                                 &pair_tangential_displacement[3 * p]));
                   }
             for (std::size_t p = 0; p < mpairs.size(); ++p)
               if (mpairs[p].active && decomposition.owned(mpairs[p].i))
@@ -200,13 +210,14 @@ namespace YarnImpact
                                sz = (mpairs[p].axes & 2) ? -1. : 1.;
                   sums.add(contact,
                            mpairs[p].w * (i == j ? 0.5 : 1.) *
-                             pair_contact_energy(fibre_law,
-                                                 d,
-                                                 x + 3 * i,
-                                                 x + 3 * j,
-                                                 sx,
-                                                 sz,
-                                                 &mxi[3 * p]));
+                             pair_contact_energy(
+                               fibre_law,
+                               d,
+                               x + 3 * i,
+                               x + 3 * j,
+                               sx,
+                               sz,
+                               &mirror_tangential_displacement[3 * p]));
                 }
           }
         // Projectile contacts of the last force evaluation (the positions
@@ -223,9 +234,12 @@ namespace YarnImpact
                              ey = pos[3 * i + 1] - contact_at.yc;
                 const double delta =
                   std::max(0., contact_at.Rr - std::sqrt(ex * ex + ey * ey));
-                sums.add(contact,
-                         fw[f] * sw[s] * chains.cw[s] *
-                           law.energy(delta, &xi_p[3 * i]));
+                sums.add(
+                  contact,
+                  fibre_symmetry_weight[f] * station_symmetry_weight[s] *
+                    chains.cw[s] *
+                    law.energy(delta,
+                               &projectile_tangential_displacement[3 * i]));
               }
         });
 
@@ -284,9 +298,9 @@ namespace YarnImpact
                   FibreBreak b;
                   b.time  = spheres.break_time[i];
                   b.fibre = f;
-                  b.x     = 0.5 * (chains.sx0[s] + chains.sx0[s + 1]);
-                  b.y     = chains.fy[f];
-                  b.z     = chains.fz[f];
+                  b.x = 0.5 * (chains.station_x0[s] + chains.station_x0[s + 1]);
+                  b.y = chains.fibre_y0[f];
+                  b.z = chains.fibre_z0[f];
                   own.push_back(b);
                 }
             }

@@ -24,10 +24,11 @@ namespace YarnImpact
                                 const double dt,
                                 ProjectileContactState &contact)
       {
-        const double *__restrict x          = spheres.pos.data();
-        const double *__restrict v          = spheres.vel.data();
-        double *__restrict F                = spheres.frc.data();
-        double *__restrict xi_p             = spheres.xi_p.data();
+        const double *__restrict x = spheres.pos.data();
+        const double *__restrict v = spheres.vel.data();
+        double *__restrict F       = spheres.force.data();
+        double *__restrict projectile_tangential_displacement =
+          spheres.projectile_tangential_displacement.data();
         std::uint64_t *__restrict proj_step = spheres.proj_step.data();
         const std::uint64_t step_count      = spheres.step_count;
         const unsigned int nf               = chains.nf;
@@ -71,20 +72,23 @@ namespace YarnImpact
                   // A new contact starts without tangential history.
                   if (proj_step[i] + 1 != step_count)
                     for (unsigned int c = 0; c < Law::history_size; ++c)
-                      xi_p[3 * i + c] = 0.;
+                      projectile_tangential_displacement[3 * i + c] = 0.;
                   proj_step[i] = step_count;
                   double vr[3];
                   Contact::relative_to_projectile(&v[3 * i], vp, vr);
                   double fc[3], diss = 0.;
-                  Contact::contact_force(law,
-                                         delta,
-                                         n,
-                                         vr,
-                                         dt,
-                                         &xi_p[3 * i],
-                                         fc,
-                                         diss);
-                  const double w = chains.fw[f] * chains.sw[s] * chains.cw[s];
+                  Contact::contact_force(
+                    law,
+                    delta,
+                    n,
+                    vr,
+                    dt,
+                    &projectile_tangential_displacement[3 * i],
+                    fc,
+                    diss);
+                  const double w = chains.fibre_symmetry_weight[f] *
+                                   chains.station_symmetry_weight[s] *
+                                   chains.cw[s];
                   F[3 * i] += w * fc[0];
                   F[3 * i + 1] += w * fc[1];
                   F[3 * i + 2] += w * fc[2];

@@ -28,8 +28,11 @@ namespace YarnImpact
         const unsigned int st_begin = decomposition.st_begin,
                            st_end   = decomposition.st_end,
                            g_hi = decomposition.g_hi, lo = decomposition.lo;
-        const std::vector<double> &sx0 = chains.sx0, &fy = chains.fy,
-                                  &fz = chains.fz, &fw = chains.fw;
+        const std::vector<double> &station_x0 = chains.station_x0,
+                                  &fibre_y0   = chains.fibre_y0,
+                                  &fibre_z0   = chains.fibre_z0,
+                                  &fibre_symmetry_weight =
+                                    chains.fibre_symmetry_weight;
         const std::vector<double> &pos = spheres.pos, &vel = spheres.vel;
         const double *x                         = pos.data();
         const std::vector<std::uint8_t> &broken = spheres.broken;
@@ -51,7 +54,7 @@ namespace YarnImpact
           for (unsigned int f = 0; f < nf; ++f)
             {
               const std::size_t i = decomposition.local_index(s, f);
-              const double X0[3]  = {sx0[s], fy[f], fz[f]};
+              const double X0[3]  = {station_x0[s], fibre_y0[f], fibre_z0[f]};
               for (unsigned int c = 0; c < 3; ++c)
                 {
                   points.push_back(static_cast<float>(pos[3 * i + c]));
@@ -76,7 +79,9 @@ namespace YarnImpact
                   lines.push_back(a + static_cast<std::int32_t>(nf));
                   const double strain = truss_strain(x, i, nf, L0);
                   cd[0].push(strain);
-                  cd[1].push(broken[i] ? 0. : truss_k * fw[f] * strain * L0);
+                  cd[1].push(broken[i] ? 0.
+                                       : truss_k * fibre_symmetry_weight[f] *
+                                           strain * L0);
                   cd[2].push(static_cast<unsigned int>(broken[i]));
                 }
             }

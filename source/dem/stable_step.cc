@@ -133,11 +133,12 @@ namespace YarnImpact
               const std::size_t i = D.local_index(s, f), j = i + nf;
               if (spheres.broken[i])
                 continue;
-              double e[3]     = {x[3 * j] - x[3 * i],
-                                 x[3 * j + 1] - x[3 * i + 1],
-                                 x[3 * j + 2] - x[3 * i + 2]};
-              const double l  = normalise(e);
-              const double k  = chains.truss_k * chains.fw[f] * chains.tw[s];
+              double e[3]    = {x[3 * j] - x[3 * i],
+                                x[3 * j + 1] - x[3 * i + 1],
+                                x[3 * j + 2] - x[3 * i + 2]};
+              const double l = normalise(e);
+              const double k =
+                chains.truss_k * chains.fibre_symmetry_weight[f] * chains.tw[s];
               const double kg = k * std::max(0., 1. - chains.L0 / l);
               add(i, e, k, kg);
               add(j, e, k, kg);
@@ -150,8 +151,9 @@ namespace YarnImpact
         // not depend on that.
         const double d2 = d * d;
         for (const ListBlock &B : blocks)
-          for (std::size_t i = B.b; i < B.e; ++i)
-            for (std::uint32_t p = B.pstart[i - B.b]; p < B.pstart[i - B.b + 1];
+          for (std::size_t i = B.row_sphere_begin; i < B.row_sphere_end; ++i)
+            for (std::uint32_t p = B.pstart[i - B.row_sphere_begin];
+                 p < B.pstart[i - B.row_sphere_begin + 1];
                  ++p)
               {
                 // The force evaluation at these positions marked the pairs
@@ -215,8 +217,9 @@ namespace YarnImpact
                       continue;
                     n[0] /= rho;
                     n[1] /= rho;
-                    const double w =
-                      0.5 * chains.fw[f] * chains.sw[s] * chains.cw[s];
+                    const double w = 0.5 * chains.fibre_symmetry_weight[f] *
+                                     chains.station_symmetry_weight[s] *
+                                     chains.cw[s];
                     add(i, n, w * k_p, w * k_pt);
                   }
               }
@@ -228,7 +231,8 @@ namespace YarnImpact
         for (std::size_t i = D.own_b; i < D.own_e; ++i)
           {
             const double inv_m =
-              chains.finv[i % nf] * chains.sinv[D.station_of(i)];
+              chains.fibre_inverse_mass[i % nf] *
+              chains.station_inverse_mass_factor[D.station_of(i)];
             if (inv_m == 0.)
               continue;
             float *K = &blocks_ii[6 * (i - D.own_b)];
@@ -236,9 +240,9 @@ namespace YarnImpact
             // its block is the whole sphere's, K + S K S over two (it has
             // half the mass and half the springs in the plane), so that the
             // step is the full model's.
-            if (chains.sw[D.station_of(i)] != 1.)
+            if (chains.station_symmetry_weight[D.station_of(i)] != 1.)
               K[3] = K[4] = 0.f; // x = 0: xy, xz
-            if (chains.fw[i % nf] != 1.)
+            if (chains.fibre_symmetry_weight[i % nf] != 1.)
               K[4] = K[5] = 0.f; // z = 0: xz, yz
             lambda = largest_eigenvalue(K, inv_m, lambda);
           }

@@ -43,7 +43,8 @@ namespace YarnImpact
                 const double e[3] = {x[3 * j] - x[3 * i],
                                      x[3 * j + 1] - x[3 * i + 1],
                                      x[3 * j + 2] - x[3 * i + 2]};
-                const double k    = chains.truss_k * chains.fw[f] * tw;
+                const double k =
+                  chains.truss_k * chains.fibre_symmetry_weight[f] * tw;
                 double t[3];
                 const double strain = truss_force(e, k, L0, t);
                 if (failure && strain > failure_strain)

@@ -1,6 +1,7 @@
 #ifndef yarn_impact_core_parameters_h
 #define yarn_impact_core_parameters_h
 
+#include <iosfwd>
 #include <string>
 
 namespace dealii
@@ -136,7 +137,27 @@ namespace YarnImpact
       normal, ///< set-up, progress line with ETA, timing summary
       quiet,  ///< set-up and summary only
       test,   ///< deterministic scaled summary only (regression tests)
+      /** As test, but the screen shows only the summary's titles and check
+       * lines (verdicts with their tolerance and reference, no measured
+       * number); the whole summary goes to summary.txt (physics tests,
+       * whose records compare summary.txt). */
+      checks,
     };
+
+    /** Whether @p v prints the deterministic, scaled summary (test and
+     * checks): nothing that depends on the machine, the clock or the
+     * number of ranks. */
+    bool
+    deterministic(Verbosity v);
+
+    /**
+     * Write the summary @p text of a run to @p out as verbosity @p v shows
+     * it: whole, or with Verbosity::checks only its titles (the lines that
+     * are not indented) and its check lines (those that begin with
+     * "  check ").
+     */
+    void
+    print_summary_text(const std::string &text, Verbosity v, std::ostream &out);
 
     /** Output (subsection `Output`). */
     struct Output

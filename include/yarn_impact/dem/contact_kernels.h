@@ -17,24 +17,24 @@ namespace YarnImpact
        * The geometry of a sphere pair, written once for the listed pairs
        * and the mirror pairs, for their forces, energies and list checks:
        * the vector @p e [m] from the image (sx x_j, y_j, sz z_j) of sphere j
-       * at @p xj to sphere i at (@p xi, @p yi, @p zi), and its squared
+       * at @p pos_j to sphere i at (@p x_i, @p y_i, @p z_i), and its squared
        * length [m^2] (returned). A listed pair has @p sx = @p sz = 1 (the
        * products are then exact, so the results are those of the plain
        * difference); a mirror image in x = 0 has @p sx = -1, in z = 0
        * @p sz = -1.
        */
       inline double
-      separation(const double xi,
-                 const double yi,
-                 const double zi,
-                 const double *xj,
+      separation(const double x_i,
+                 const double y_i,
+                 const double z_i,
+                 const double *pos_j,
                  const double sx,
                  const double sz,
                  double *e)
       {
-        e[0] = xi - sx * xj[0];
-        e[1] = yi - xj[1];
-        e[2] = zi - sz * xj[2];
+        e[0] = x_i - sx * pos_j[0];
+        e[1] = y_i - pos_j[1];
+        e[2] = z_i - sz * pos_j[2];
         return e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
       }
 
@@ -81,22 +81,23 @@ namespace YarnImpact
 
 
       /**
-       * The elastic energy [J] of the contact of sphere i at @p x_i with
-       * (the image of) sphere j at @p xj, as separation(), with its
+       * The elastic energy [J] of the contact of sphere i at @p pos_i with
+       * (the image of) sphere j at @p pos_j, as separation(), with its
        * tangential history @p xi_t [m]: the energy twin of
        * pair_contact_force(), on the same geometry.
        */
       inline double
       pair_contact_energy(const FibreContactLaw &law,
                           const double d,
-                          const double *x_i,
-                          const double *xj,
+                          const double *pos_i,
+                          const double *pos_j,
                           const double sx,
                           const double sz,
                           const double *xi_t)
       {
         double e[3];
-        const double r2    = separation(x_i[0], x_i[1], x_i[2], xj, sx, sz, e);
+        const double r2 =
+          separation(pos_i[0], pos_i[1], pos_i[2], pos_j, sx, sz, e);
         const double delta = std::max(0., d - std::sqrt(r2));
         return law.energy(delta, xi_t);
       }

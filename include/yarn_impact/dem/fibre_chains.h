@@ -64,14 +64,30 @@ namespace YarnImpact
         /** Mass of the modelled spheres times the symmetry factor [kg]. */
         double total_mass = 0.;
 
-        /** Per fibre: initial centre y, z [m], weight (1/2 on z = 0) [-],
-         * inverse mass of a whole-station sphere [1/kg], z-velocity mask
-         * (0 on z = 0) [-]. */
-        std::vector<double> fy, fz, fw, finv, zmask;
-        /** Per station: initial x [m], weight (1/2 on x = 0) [-], factor of
-         * the inverse mass (0 when clamped, 2 on x = 0) [-], x-velocity mask
-         * (0 on x = 0) [-]. */
-        std::vector<double> sx0, sw, sinv, xmask;
+        /** Per fibre: the initial y and z of its centre [m]. */
+        std::vector<double> fibre_y0, fibre_z0;
+        /** Per fibre: the share of its spheres that the model holds, 1/2
+         * for a fibre cut by the symmetry plane z = 0, else 1 [-] (mass,
+         * truss stiffness, contacts, energies). */
+        std::vector<double> fibre_symmetry_weight;
+        /** Per fibre: the inverse mass of its sphere at a whole station,
+         * 1 / (sphere_mass fibre_symmetry_weight) [1/kg]; a sphere's inverse
+         * mass is this times station_inverse_mass_factor of its station. */
+        std::vector<double> fibre_inverse_mass;
+        /** Per fibre: the z-velocity mask (0 on z = 0) [-]. */
+        std::vector<double> zmask;
+        /** Per station: its initial x [m]. */
+        std::vector<double> station_x0;
+        /** Per station: the share of its spheres that the model holds, 1/2
+         * on the symmetry plane x = 0, else 1 [-]. */
+        std::vector<double> station_symmetry_weight;
+        /** Per station: the factor of fibre_inverse_mass that gives its
+         * spheres' inverse mass [-]: 0 when clamped, 2 on x = 0 (half a
+         * sphere), 1 / the coupling's particle weight when coupled, else 1.
+         */
+        std::vector<double> station_inverse_mass_factor;
+        /** Per station: the x-velocity mask (0 on x = 0) [-]. */
+        std::vector<double> xmask;
         /** Per station: the coupling's particle weight (mass, contacts,
          * energies) [-]; per truss from station s to s + 1: its weight
          * (stiffness, energy) [-]. All 1 without a coupling

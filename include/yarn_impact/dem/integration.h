@@ -55,9 +55,9 @@ namespace YarnImpact
         const unsigned int s = decomposition.station_of(i), f = i % chains.nf;
         const double mask =
           (c == 0 ? chains.xmask[s] : (c == 2 ? chains.zmask[f] : 1.));
-        return spheres.vel[3 * i + c] + spheres.pending_kick * chains.sinv[s] *
-                                          chains.finv[f] * mask *
-                                          spheres.frc[3 * i + c];
+        return spheres.vel[3 * i + c] +
+               spheres.pending_kick * chains.station_inverse_mass_factor[s] *
+                 chains.fibre_inverse_mass[f] * mask * spheres.force[3 * i + c];
       }
     } // namespace internal
   }   // namespace DEM

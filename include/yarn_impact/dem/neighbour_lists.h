@@ -63,28 +63,44 @@ namespace YarnImpact
         /** Active cross-sections of the rows, and the end of the halo
          * (which grows when other cross-sections come near the rows). */
         unsigned int row_begin = 0, row_end = 0, halo_end = 0;
-        /** Spheres of the rows [b, e) and of the halo [e, h) at the last
-         * build. */
-        std::size_t b = 0, e = 0, h = 0;
+        /** Local indices of the spheres of the rows, [row_sphere_begin,
+         * row_sphere_end), and of the halo, [row_sphere_end,
+         * halo_sphere_end), at the last build [-]. */
+        std::size_t row_sphere_begin = 0, row_sphere_end = 0,
+                    halo_sphere_end = 0;
         /** The cross-sections changed since the last build. */
         bool stale = true;
         /** The rows hold the plane x = 0 (mirror pairs in x). */
         bool holds_plane = false;
-        /** Pairs in CSR by the row of the lower index, with the tangential
-         * history of each pair [m]; mirror pairs likewise. */
+        /** Pairs in CSR by the row of the lower index; mirror pairs
+         * likewise. The _old arrays hold the previous build's, whose
+         * histories a rebuild carries over. */
         std::vector<std::uint32_t> pstart, pstart_old;
         std::vector<Pair> pairs, pairs_old;
-        std::vector<double> pxi, pxi_old;
+        /** Tangential history xi_t of each pair's contact: the elastic
+         * tangential displacement of its Cundall-Strack spring [m], 3 per
+         * pair (0 while the pair does not touch). */
+        std::vector<double> pair_tangential_displacement,
+          pair_tangential_displacement_old;
         std::vector<MirrorPair> mpairs, mpairs_old;
-        std::vector<double> mxi, mxi_old;
-        /** Build positions [m] and build bins of the spheres [b, h). */
+        /** The same for each mirror pair (a sphere and its image in x = 0
+         * or z = 0) [m], 3 per mirror pair. */
+        std::vector<double> mirror_tangential_displacement,
+          mirror_tangential_displacement_old;
+        /** Build positions [m] and build bins of the spheres
+         * [row_sphere_begin, halo_sphere_end). */
         std::vector<float> pos_build;
         std::vector<std::uint32_t> bin_of;
         /** Bins along x of the build (width d + skin, from the lowest
-         * sphere) and their reference displacements [m]. */
+         * sphere) and the number of spheres in each [-]. */
         unsigned int n_bins = 0;
         std::vector<std::uint32_t> bin_count;
-        std::vector<double> D_prev, D_sum;
+        /** Per bin, 3 components: the mean displacement of its spheres
+         * since the build, at the last evaluation of the bound (the
+         * reference each sphere's displacement is measured from) [m]; and
+         * the sum of their displacements that the current step gathers for
+         * the next mean [m]. */
+        std::vector<double> bin_mean_displacement, bin_displacement_sum;
         /** Largest squared displacement relative to its bin [m^2]. */
         double r2_max = 0.;
         /** The criterion's bound of this step [m]. */
@@ -107,18 +123,18 @@ namespace YarnImpact
       inline void
       accumulate_criterion(ListBlock &B, const double *pos, const std::size_t i)
       {
-        const std::size_t k   = i - B.b;
+        const std::size_t k   = i - B.row_sphere_begin;
         const std::uint32_t b = B.bin_of[k];
         const double dx       = pos[3 * i] - B.pos_build[3 * k];
         const double dy       = pos[3 * i + 1] - B.pos_build[3 * k + 1];
         const double dz       = pos[3 * i + 2] - B.pos_build[3 * k + 2];
-        const double rx       = dx - B.D_prev[3 * b];
-        const double ry       = dy - B.D_prev[3 * b + 1];
-        const double rz       = dz - B.D_prev[3 * b + 2];
+        const double rx       = dx - B.bin_mean_displacement[3 * b];
+        const double ry       = dy - B.bin_mean_displacement[3 * b + 1];
+        const double rz       = dz - B.bin_mean_displacement[3 * b + 2];
         B.r2_max              = std::max(B.r2_max, rx * rx + ry * ry + rz * rz);
-        B.D_sum[3 * b] += dx;
-        B.D_sum[3 * b + 1] += dy;
-        B.D_sum[3 * b + 2] += dz;
+        B.bin_displacement_sum[3 * b] += dx;
+        B.bin_displacement_sum[3 * b + 1] += dy;
+        B.bin_displacement_sum[3 * b + 2] += dz;
       }
 
 

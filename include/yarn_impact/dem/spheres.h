@@ -19,15 +19,19 @@ namespace YarnImpact
        */
       struct Spheres
       {
-        /** Position [m], velocity [m/s] and force [N], 3 per sphere. The
-         * velocity lags the force by the pending kick. */
-        std::vector<double> pos, vel, frc;
+        /** Position [m], velocity [m/s] and the force on each sphere [N]
+         * (the sum of truss, contact and projectile forces of the last
+         * evaluation), 3 per sphere. The velocity lags the force by the
+         * pending kick. */
+        std::vector<double> pos, vel, force;
         /** Whether the truss to the same fibre's sphere at the next station
          * has failed. */
         std::vector<std::uint8_t> broken;
-        /** Tangential history of the projectile contact [m], 3 per sphere,
-         * and the force evaluation at which that contact was last active. */
-        std::vector<double> xi_p;
+        /** Tangential history xi_t of each sphere's contact with the
+         * projectile: the elastic tangential displacement of its
+         * Cundall-Strack spring [m], 3 per sphere; and the force evaluation
+         * at which that contact was last active. */
+        std::vector<double> projectile_tangential_displacement;
         std::vector<std::uint64_t> proj_step;
         /** Energy dissipated so far [J] by the contacts and trusses that
          * sphere i heads (set for owned spheres only): a pair's by its lower

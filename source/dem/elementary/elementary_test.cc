@@ -44,9 +44,9 @@ namespace YarnImpact
                         const MPI_Comm communicator,
                         std::ostream &out)
     {
-      using YarnImpact::Parameters::Verbosity;
-      const bool root    = Utilities::MPI::this_mpi_process(communicator) == 0;
-      const bool testing = shared.output.verbosity == Verbosity::test;
+      const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
+      const bool testing =
+        YarnImpact::Parameters::deterministic(shared.output.verbosity);
       internal::PeriodicSegment seg(shared, dem, test, communicator);
       const auto &y      = shared.yarn;
       const double phi   = y.fibre_area() / y.section_area();
@@ -125,7 +125,9 @@ namespace YarnImpact
                             "': " + ec.message() + ".");
       });
       if (root)
-        out << report.text.str();
+        YarnImpact::Parameters::print_summary_text(report.text.str(),
+                                                   shared.output.verbosity,
+                                                   out);
       collective_output(communicator, [&] {
         if (root)
           write_file_atomically(shared.output.directory + "/summary.txt",

@@ -61,7 +61,7 @@ namespace YarnImpact
             }
 
         // Fibre contacts, from both sides (each rank evaluates the pairs of
-        // its own spheres): the law is odd in (n, v, xi), so both sides
+        // its own spheres): the law is odd in (n, v, xi_t), so both sides
         // give the same force bit for bit and the sum does not depend on
         // the ranks. The pair kernel is the impact model's
         // (contact_kernels.h), on the nearest periodic image.
@@ -76,7 +76,7 @@ namespace YarnImpact
                 const double e[3]   = {nearest_image(x[3 * i] - x[3 * j], Lx),
                                        x[3 * i + 1] - x[3 * j + 1],
                                        x[3 * i + 2] - x[3 * j + 2]};
-                double *xi          = &history[3 * p];
+                double *xi_t        = &history[3 * p];
                 double f[3], diss = 0.;
                 if (!pair_contact_force(fibre_law,
                                         d,
@@ -87,7 +87,7 @@ namespace YarnImpact
                                         1.,
                                         1.,
                                         dt,
-                                        xi,
+                                        xi_t,
                                         f,
                                         diss))
                   {
@@ -95,7 +95,7 @@ namespace YarnImpact
                     if (touching[p])
                       {
                         touching[p] = 0;
-                        xi[0] = xi[1] = xi[2] = 0.;
+                        xi_t[0] = xi_t[1] = xi_t[2] = 0.;
                       }
                     continue;
                   }
@@ -134,13 +134,13 @@ namespace YarnImpact
                   continue;
                 double vr[3] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
                 vr[c] -= wall.velocity;
-                double xi[3] = {0., 0., 0.}, f[3], diss = 0.;
+                double xi_t[3] = {0., 0., 0.}, f[3], diss = 0.;
                 Contact::contact_force(wall_law,
                                        delta,
                                        nv,
                                        vr,
                                        dt,
-                                       xi,
+                                       xi_t,
                                        f,
                                        diss);
                 wall.load -= wall.side * f[c];
