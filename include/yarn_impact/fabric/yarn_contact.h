@@ -101,10 +101,10 @@ namespace YarnImpact
      * contact are slaves): its penetration below the closest face whose
      * normal opposes its own, found by closest-point projection onto the
      * bilinear face, gives the force of a Contact law (contact_law.h) of
-     * normal stiffness p A_s / 2 (A_s the node's area facing the face) on
-     * the node and the opposite force on the
-     * face's nodes by their shape functions at the projection, so that
-     * momentum is conserved to round-off. Tangential history per contact
+     * normal stiffness p A_s / 2 (A_s the node's area facing the face,
+     * fixed when the contact starts) on the node and the opposite force on
+     * the face's nodes by their shape functions at the projection, so
+     * that momentum is conserved to round-off. Tangential history per contact
      * (node, other yarn). Candidates from bins, rebuilt by a displacement
      * criterion that misses no contact.
      *
@@ -121,9 +121,12 @@ namespace YarnImpact
     {
     public:
       /**
+       * @param parameters penalty [Pa/m], friction [-], law, search [m]
        * @param surface the surface, the same on every rank
-       * @param owned the nodes this rank owns, ascending; every node owned
-       * by exactly one rank of @p communicator
+       * @param owned the nodes this rank owns; every node owned by exactly
+       * one rank of @p communicator (throws std::invalid_argument if the
+       * counts do not add up)
+       * @param communicator the ranks that share the surface
        */
       YarnContact(const YarnContactParameters &parameters,
                   const ContactSurface &surface,
