@@ -1,6 +1,7 @@
 // The woven fabric's registration: `Model = fabric` (core/model_registry.h).
 // Its patch is built and checked, but the model is refused before it runs:
-// crossing yarns need a yarn-yarn contact, which is not written yet
+// the contact of its crossing yarns exists (Fabric::YarnContact,
+// doc/fe-model.md section 8.4), but no model steps the yarns with it yet
 // (doc/fe-model.md section 8.3).
 
 #include <yarn_impact/core/model_registry.h>
@@ -29,7 +30,7 @@ namespace YarnImpact
         help()
         {
           return "a plain-woven patch of crimped yarns (refused for now: "
-                 "its crossing yarns need a yarn-yarn contact)";
+                 "no model steps its yarns with their contact yet)";
         }
 
         /** Subsection `Fabric`. */
@@ -124,9 +125,9 @@ namespace YarnImpact
           refused << "= fabric cannot run yet: its woven patch of "
                   << memory_estimate(shared).n_elements
                   << " cells is checked, but its crossing yarns press on "
-                     "each other under the projectile and need a "
-                     "yarn-yarn contact, which is not implemented (a single "
-                     "crimped yarn runs with Model = fe and FE/Crimp)";
+                     "each other under the projectile and no model steps "
+                     "them with their contact yet (a single crimped yarn "
+                     "runs with Model = fe and FE/Crimp)";
           require(false, "Model", refused.str());
         }
 

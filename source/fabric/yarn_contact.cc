@@ -1,0 +1,426 @@
+// The yarn-yarn contact's forces (doc/fe-model.md section 8.4).
+
+#include <yarn_impact/core/reproducible_sum.h>
+#include <yarn_impact/fabric/yarn_contact.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace YarnImpact
+{
+  namespace Fabric
+  {
+    namespace
+    {
+      /** The closest point of a bilinear face to a point. */
+      struct Projection
+      {
+        /** Shape functions at the closest point [-]. */
+        double N[4];
+        /** Unit normal there, out of the face's yarn [-]. */
+        double n[3];
+        /** Signed distance along n [m] (negative: penetrated). */
+        double gap;
+      };
+
+      inline void
+      cross(const double *a, const double *b, double *c)
+      {
+        c[0] = a[1] * b[2] - a[2] * b[1];
+        c[1] = a[2] * b[0] - a[0] * b[2];
+        c[2] = a[0] * b[1] - a[1] * b[0];
+      }
+
+      inline double
+      dot(const double *a, const double *b)
+      {
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+      }
+
+      /**
+       * Closest point of the bilinear face with cyclic corners @p c to
+       * @p p by Newton's method on (p - X) . X_xi = (p - X) . X_eta = 0,
+       * from the centre; false if it lies outside the face (beyond a
+       * tolerance of 1e-9 in the face's coordinates, so that a node on an
+       * edge still finds a face) or Newton has not converged.
+       */
+      bool
+      project(const double *c[4], const double *p, Projection &out)
+      {
+        double xi = 0.5, eta = 0.5;
+        double X[3], Xxi[3], Xeta[3], r[3];
+        const double tolerance = 1e-9;
+        for (unsigned int iteration = 0;; ++iteration)
+          {
+            const double N[4] = {(1 - xi) * (1 - eta),
+                                 xi * (1 - eta),
+                                 xi * eta,
+                                 (1 - xi) * eta};
+            double Xc[3];
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                X[d] = N[0] * c[0][d] + N[1] * c[1][d] + N[2] * c[2][d] +
+                       N[3] * c[3][d];
+                Xxi[d] =
+                  (1 - eta) * (c[1][d] - c[0][d]) + eta * (c[2][d] - c[3][d]);
+                Xeta[d] =
+                  (1 - xi) * (c[3][d] - c[0][d]) + xi * (c[2][d] - c[1][d]);
+                Xc[d] = c[0][d] - c[1][d] + c[2][d] - c[3][d];
+                r[d]  = p[d] - X[d];
+              }
+            if (iteration == 12)
+              {
+                if (xi < -tolerance || xi > 1 + tolerance || eta < -tolerance ||
+                    eta > 1 + tolerance)
+                  return false;
+                std::copy(N, N + 4, out.N);
+                break;
+              }
+            const double F0  = dot(r, Xxi);
+            const double F1  = dot(r, Xeta);
+            const double J00 = -dot(Xxi, Xxi);
+            const double J11 = -dot(Xeta, Xeta);
+            const double J01 = -dot(Xxi, Xeta) + dot(r, Xc);
+            const double det = J00 * J11 - J01 * J01;
+            if (!(std::abs(det) > 0.))
+              return false;
+            // A fixed number of iterations (converged long before on the
+            // nearly flat faces of a yarn): no test on round-off, so that
+            // every rank takes the same path.
+            xi -= (J11 * F0 - J01 * F1) / det;
+            eta -= (J00 * F1 - J01 * F0) / det;
+            if (!(std::abs(xi) < 10. && std::abs(eta) < 10.))
+              return false;
+          }
+        cross(Xxi, Xeta, out.n);
+        const double length = std::sqrt(dot(out.n, out.n));
+        for (unsigned int d = 0; d < 3; ++d)
+          out.n[d] /= length;
+        out.gap = dot(r, out.n);
+        // Converged: x_s - X along the normal, within 1e-8 of the face's
+        // size (Newton may stall on a warped face far from the point; the
+        // search's proof needs x_s = X + g n).
+        double tangential = 0.;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            const double t = r[d] - out.gap * out.n[d];
+            tangential += t * t;
+          }
+        return tangential <= 1e-16 * (dot(Xxi, Xxi) + dot(Xeta, Xeta));
+      }
+    } // namespace
+
+
+    YarnContact::YarnContact(const YarnContactParameters &parameters,
+                             const ContactSurface &surface,
+                             const std::vector<unsigned int> &owned,
+                             const MPI_Comm communicator)
+      : parameters(parameters)
+      , surface(surface)
+      , communicator(communicator)
+      , owned(owned)
+      , is_owned(surface.n_nodes(), 0)
+      , local_index(surface.n_nodes(), 0)
+      , position(3 * surface.n_nodes(), 0.)
+      , velocity(3 * surface.n_nodes(), 0.)
+      , node_faces(surface.n_nodes())
+      , node_dissipated(surface.n_nodes(), 0.)
+    {
+      if (!(parameters.penalty > 0.) || !(parameters.detection_depth > 0.) ||
+          !(parameters.skin > 0.) || parameters.friction < 0.)
+        throw std::invalid_argument(
+          "yarn contact: penalty, detection depth and skin must be positive, "
+          "friction not negative");
+      for (unsigned int k = 0; k < owned.size(); ++k)
+        {
+          is_owned[owned[k]]    = 1;
+          local_index[owned[k]] = k;
+        }
+      int n_ranks;
+      MPI_Comm_size(communicator, &n_ranks);
+      const int n_owned = owned.size();
+      counts.resize(n_ranks);
+      displacements.assign(n_ranks + 1, 0);
+      MPI_Allgather(&n_owned,
+                    1,
+                    MPI_INT,
+                    counts.data(),
+                    1,
+                    MPI_INT,
+                    communicator);
+      for (int r = 0; r < n_ranks; ++r)
+        displacements[r + 1] = displacements[r] + counts[r];
+      if (displacements.back() != int(surface.n_nodes()))
+        throw std::invalid_argument(
+          "yarn contact: every surface node must be owned by one rank");
+      gather_order.resize(surface.n_nodes());
+      MPI_Allgatherv(owned.data(),
+                     n_owned,
+                     MPI_UNSIGNED,
+                     gather_order.data(),
+                     counts.data(),
+                     displacements.data(),
+                     MPI_UNSIGNED,
+                     communicator);
+      for (unsigned int f = 0; f < surface.faces.size(); ++f)
+        for (const unsigned int node : surface.faces[f])
+          node_faces[node].push_back(f);
+    }
+
+
+    dealii::Tensor<1, 3>
+    YarnContact::area_vector(const unsigned int node) const
+    {
+      // The integral of its shape function times the surface element
+      // over each of its faces, in the faces' global order: N_s and
+      // X_xi x X_eta are bilinear, so 2 x 2 Gauss points are exact.
+      const double g[2] = {0.5 - 0.5 / std::sqrt(3.),
+                           0.5 + 0.5 / std::sqrt(3.)};
+      dealii::Tensor<1, 3> A;
+      for (const unsigned int f : node_faces[node])
+        {
+          const auto &c    = surface.faces[f];
+          const unsigned k = std::find(c.begin(), c.end(), node) - c.begin();
+          for (const double xi : g)
+            for (const double eta : g)
+              {
+                const double N[4] = {(1 - xi) * (1 - eta),
+                                     xi * (1 - eta),
+                                     xi * eta,
+                                     (1 - xi) * eta};
+                double Xxi[3], Xeta[3], n[3];
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    const double *x0 = &position[3 * c[0] + d];
+                    const double *x1 = &position[3 * c[1] + d];
+                    const double *x2 = &position[3 * c[2] + d];
+                    const double *x3 = &position[3 * c[3] + d];
+                    Xxi[d]  = (1 - eta) * (*x1 - *x0) + eta * (*x2 - *x3);
+                    Xeta[d] = (1 - xi) * (*x3 - *x0) + xi * (*x2 - *x1);
+                  }
+                cross(Xxi, Xeta, n);
+                for (unsigned int d = 0; d < 3; ++d)
+                  A[d] += 0.25 * N[k] * n[d];
+              }
+        }
+      return A;
+    }
+
+
+    template <class Law>
+    void
+    YarnContact::slot_force(Slot &slot,
+                            const double dt,
+                            std::vector<double> &force)
+    {
+      const unsigned int s           = slot.node;
+      const double *p                = &position[3 * s];
+      const dealii::Tensor<1, 3> A_s = area_vector(s);
+      const double ns[3]             = {A_s[0], A_s[1], A_s[2]};
+
+      // The closest face whose normal opposes the node's, among those it
+      // penetrates by at most d_max; the first in face order on a tie.
+      Projection best, trial;
+      double best_depth = std::numeric_limits<double>::max();
+      int best_face     = -1;
+      for (unsigned int i = slot.begin; i < slot.end; ++i)
+        {
+          const unsigned int f = slot_faces[i];
+          const double *c[4];
+          for (unsigned int a = 0; a < 4; ++a)
+            c[a] = &position[3 * surface.faces[f][a]];
+          if (!project(c, p, trial) || !(dot(trial.n, ns) < 0.))
+            continue;
+          const double depth = -trial.gap;
+          if (depth > 0. && depth <= parameters.detection_depth &&
+              depth < best_depth)
+            {
+              best       = trial;
+              best_depth = depth;
+              best_face  = f;
+            }
+        }
+      slot.energy = 0.;
+      if (best_face < 0)
+        {
+          slot.touching = false;
+          return;
+        }
+      // The node's area facing the face, -A_s . n, when the contact
+      // starts: a node on a yarn's edge carries the share of its faces
+      // that press, not of those beside. Kept while the contact lasts, so
+      // that the normal force derives from the energy k delta^2 / 2 (the
+      // closest point's gap has the gradient n, -N_a n). Half the
+      // penalty: both sides of a contact are slaves, so two surfaces
+      // pressed by d carry p d per area.
+      if (!slot.touching)
+        {
+          std::fill(slot.history, slot.history + 3, 0.);
+          slot.stiffness = -0.5 * parameters.penalty * dot(ns, best.n);
+        }
+      slot.touching = true;
+
+      const auto &face = surface.faces[best_face];
+      double v_rel[3];
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          v_rel[d] = velocity[3 * s + d];
+          for (unsigned int a = 0; a < 4; ++a)
+            v_rel[d] -= best.N[a] * velocity[3 * face[a] + d];
+        }
+      Contact::ContactConstants constants;
+      constants.stiffness = slot.stiffness;
+      constants.damping =
+        parameters.damping_ratio > 0.
+          ? Contact::critical_damping(parameters.damping_ratio,
+                                      surface.mass[s],
+                                      constants.stiffness)
+          : 0.;
+      constants.tangential_stiffness =
+        parameters.tangential_stiffness_ratio * constants.stiffness;
+      constants.friction = parameters.friction;
+      constants.mass     = surface.mass[s];
+      const Law law(constants);
+      double f[3], work = 0.;
+      Contact::contact_force(law,
+                             best_depth,
+                             best.n,
+                             v_rel,
+                             dt,
+                             slot.history,
+                             f,
+                             work);
+      if (is_owned[s])
+        {
+          for (unsigned int d = 0; d < 3; ++d)
+            force[3 * local_index[s] + d] += f[d];
+          node_dissipated[s] += work;
+          slot.energy = law.energy(best_depth, slot.history);
+        }
+      for (unsigned int a = 0; a < 4; ++a)
+        if (is_owned[face[a]])
+          for (unsigned int d = 0; d < 3; ++d)
+            force[3 * local_index[face[a]] + d] -= best.N[a] * f[d];
+    }
+
+
+    void
+    YarnContact::add_forces(const std::vector<double> &x,
+                            const std::vector<double> &v,
+                            const double dt,
+                            std::vector<double> &force)
+    {
+      if (x.size() != 3 * owned.size() || v.size() != x.size() ||
+          force.size() != x.size())
+        throw std::invalid_argument("yarn contact: 3 values per owned node");
+      // Between rebuilds only the nodes this rank's contacts need come
+      // from their owners; a rebuild gathers every node.
+      if (lists_may_miss(x))
+        {
+          gather(x, v);
+          rebuild();
+          set_up_exchange();
+        }
+      else
+        exchange(x, v);
+      // The slots in one global order (node, then yarn) on every rank:
+      // each node's force sums its terms in the same order on any
+      // partition.
+      Contact::with_contact_law(parameters.law, [&](auto tag) {
+        using Law = typename decltype(tag)::type;
+        for (Slot &slot : slots)
+          slot_force<Law>(slot, dt, force);
+        return 0;
+      });
+    }
+
+
+    double
+    YarnContact::stable_time_step() const
+    {
+      // A node's Gershgorin row sum is 2 k_s (slave) plus 2 k_s (face
+      // node of the other side's slave on it), k_s = p A / 2.
+      const double ratio = std::max(1., parameters.tangential_stiffness_ratio);
+      const double zeta  = parameters.damping_ratio;
+      double dt          = std::numeric_limits<double>::max();
+      for (unsigned int i = 0; i < surface.n_nodes(); ++i)
+        dt = std::min(dt,
+                      2. * std::sqrt(surface.mass[i] /
+                                     (2. * ratio * parameters.penalty *
+                                      surface.area[i])));
+      return dt * (std::sqrt(1. + zeta * zeta) - zeta);
+    }
+
+
+    double
+    YarnContact::energy() const
+    {
+      ReproducibleSum sum(1);
+      for (const Slot &slot : slots)
+        if (is_owned[slot.node])
+          sum.add(0, slot.energy);
+      return sum.sum(communicator)[0];
+    }
+
+
+    double
+    YarnContact::dissipated() const
+    {
+      ReproducibleSum sum(1);
+      for (const unsigned int node : owned)
+        sum.add(0, node_dissipated[node]);
+      return sum.sum(communicator)[0];
+    }
+
+
+    void
+    YarnContact::save(Checkpoint::Writer &out) const
+    {
+      out.tag("yarn contact");
+      std::vector<double> touching, work;
+      for (const Slot &slot : slots)
+        if (slot.touching && is_owned[slot.node])
+          touching.insert(touching.end(),
+                          {double(slot.node),
+                           double(slot.yarn),
+                           slot.history[0],
+                           slot.history[1],
+                           slot.history[2],
+                           slot.stiffness});
+      for (const unsigned int node : owned)
+        work.push_back(node_dissipated[node]);
+      out.put(touching);
+      out.put(work);
+    }
+
+
+    void
+    YarnContact::load(Checkpoint::Reader &in)
+    {
+      in.tag("yarn contact");
+      std::vector<double> touching, work(owned.size());
+      in.get(touching);
+      in.get_same_size(work, "dissipated work of the yarn contact's nodes");
+      for (unsigned int k = 0; k < owned.size(); ++k)
+        node_dissipated[owned[k]] = work[k];
+      loaded = touching;
+      slots.clear();
+      slot_faces.clear();
+      built = false;
+    }
+
+
+    unsigned int
+    YarnContact::n_touching() const
+    {
+      unsigned int n = 0;
+      for (const Slot &slot : slots)
+        n += slot.touching && is_owned[slot.node];
+      unsigned int total = 0;
+      MPI_Allreduce(&n, &total, 1, MPI_UNSIGNED, MPI_SUM, communicator);
+      return total;
+    }
+  } // namespace Fabric
+} // namespace YarnImpact
