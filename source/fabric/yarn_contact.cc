@@ -380,15 +380,7 @@ namespace YarnImpact
     {
       out.tag("yarn contact");
       std::vector<double> touching, work;
-      for (const Slot &slot : slots)
-        if (slot.touching && is_owned[slot.node])
-          touching.insert(touching.end(),
-                          {double(slot.node),
-                           double(slot.yarn),
-                           slot.history[0],
-                           slot.history[1],
-                           slot.history[2],
-                           slot.stiffness});
+      append_touching(touching);
       for (const unsigned int node : owned)
         work.push_back(node_dissipated[node]);
       out.put(touching);

@@ -125,15 +125,7 @@ namespace YarnImpact
       // evaluates a contact it did not before gets its history too.
       std::vector<double> mine = std::move(loaded), all;
       loaded.clear();
-      for (const Slot &slot : slots)
-        if (slot.touching && is_owned[slot.node])
-          mine.insert(mine.end(),
-                      {double(slot.node),
-                       double(slot.yarn),
-                       slot.history[0],
-                       slot.history[1],
-                       slot.history[2],
-                       slot.stiffness});
+      append_touching(mine);
       int n_mine = mine.size();
       std::vector<int> n_all(counts.size()), offsets(counts.size() + 1, 0);
       MPI_Allgather(&n_mine,
@@ -260,6 +252,21 @@ namespace YarnImpact
       built_position = position;
       built          = true;
       ++rebuilds;
+    }
+
+
+    void
+    YarnContact::append_touching(std::vector<double> &out) const
+    {
+      for (const Slot &slot : slots)
+        if (slot.touching && is_owned[slot.node])
+          out.insert(out.end(),
+                     {double(slot.node),
+                      double(slot.yarn),
+                      slot.history[0],
+                      slot.history[1],
+                      slot.history[2],
+                      slot.stiffness});
     }
   } // namespace Fabric
 } // namespace YarnImpact

@@ -210,6 +210,12 @@ namespace YarnImpact
         double energy = 0.;
       };
 
+      /** Append the touching contacts of the owned slave nodes to @p out,
+       * 6 doubles each (node, yarn, tangential history, stiffness): the
+       * record a checkpoint and a rebuild's history hand-over share. */
+      void
+      append_touching(std::vector<double> &out) const;
+
       /** Gather every node's position and velocity from the owned ones
        * of all ranks into `position` and `velocity`. Collective. */
       void
