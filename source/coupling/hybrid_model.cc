@@ -109,7 +109,7 @@ namespace YarnImpact
         o.dissipated_energy = a.dissipated_energy + b.dissipated_energy;
         o.max_strain        = std::max(a.max_strain, b.max_strain);
         o.n_failed          = b.n_failed;
-        o.n_eroded          = b.n_eroded;
+        o.n_eroded          = a.n_eroded + b.n_eroded;
         o.n_damaged         = b.n_damaged;
         o.cut_through       = b.cut_through;
         if (clamp_model)

@@ -199,6 +199,9 @@ namespace YarnImpact
       p.fe_shared              = shared;
       p.fe_shared.yarn.failure = false;
       p.fe                     = fe;
+      // Its cells among the broken ends of a cut yarn are crushed as a
+      // failing FE yarn's are, and eroded as they are.
+      p.fe.erode_crushed_cells = shared.yarn.failure;
       // The same yarn on both sides (doc/hybrid.md section 3.2).
       p.fe.density_from_fibres       = true;
       p.fe.axial_modulus_from_fibres = true;

@@ -183,6 +183,9 @@ namespace YarnImpact
       cells.reset_state(cell_index.size());
       failure_law =
         make_failure_law(shared.yarn, parameters.failure, law.axial_modulus());
+      if (failure_law.kind == FailureLaw::Kind::none &&
+          parameters.erode_crushed_cells)
+        failure_law.kind = FailureLaw::Kind::erosion;
       return area;
     }
 

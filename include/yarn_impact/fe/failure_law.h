@@ -93,10 +93,15 @@ namespace YarnImpact
      */
     struct FailureLaw
     {
-      /** Which law, none for a yarn that does not fail (nor erode). */
+      /** Which law, none for a yarn that does not fail (nor erode);
+       * erosion for a yarn whose fibres do not fail but whose crushed,
+       * inverted or non-finite cells are eroded (the FE part of a hybrid
+       * yarn: its fibres break in the coupled model, and its cells among
+       * their broken ends are crushed as the FE yarn's are). */
       enum class Kind
       {
         none,
+        erosion,
         sudden,
         progressive
       };

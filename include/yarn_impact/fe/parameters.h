@@ -147,6 +147,13 @@ namespace YarnImpact
        * node the fibres' share of the axial stiffness (doc/hybrid.md
        * section 3.3). Empty: 1. */
       std::function<double(const double *)> section_quadrature_factor;
+      /** Also set by a coupling: a part without fibre failure (Yarn/Failure
+       * off in its problem) still erodes its crushed, inverted or
+       * non-finite cells (FailureLaw::Kind::erosion), because its fibres
+       * break in the other model and its cells among their broken ends
+       * are crushed as those of a failing FE yarn (doc/hybrid.md section
+       * 3.4). */
+      bool erode_crushed_cells = false;
       /** Set by a model whose yarns are curved, never by a `.prm`: the unit
        * fibre direction M(X) [-] (written to the second argument) at a
        * reference point X = (x, y, z) [m], given to every Gauss point as
