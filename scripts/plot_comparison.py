@@ -90,6 +90,34 @@ def end_note(ax, data):
                         color=colour, fontsize=9)
 
 
+def fe_label(directory):
+    """The FE curve's legend: the law and the failure model of the run, from
+    its resolved DIRECTORY/parameters.prm (the generic label without it)."""
+    path = os.path.join(directory, "parameters.prm")
+    if not os.path.exists(path):
+        return MODELS[0][1]
+    entries, section = {}, []
+    with open(path) as f:
+        for line in f:
+            words = line.split()
+            if words[:1] == ["subsection"]:
+                section.append(" ".join(words[1:]))
+            elif words[:1] == ["end"] and section:
+                section.pop()
+            elif words[:1] == ["set"] and "=" in line:
+                name, value = line.split("=", 1)
+                key = "/".join(section + [name.strip()[4:].strip()])
+                entries[key] = value.strip()
+    law = entries.get("FE/Constitutive law", "?")
+    if entries.get("Yarn/Failure", "true") != "true":
+        failure = "no failure"
+    else:
+        failure = {"sudden": "sudden failure (the paper's)",
+                   "progressive": "progressive failure (identified)"}.get(
+                       entries.get("Yarn/Failure model"), "?")
+    return f"FE, {law} law, {failure}"
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -102,7 +130,7 @@ def main():
     for model, label, colour in MODELS:
         if model in data:
             ax.plot(data[model]["t"], data[model]["v"], color=colour,
-                    label=label)
+                    label=fe_label(directory) if model == "FE" else label)
     end_note(ax, data)
     ax.set_xlabel("time t [\u00b5s]")
     ax.set_ylabel("projectile velocity [m/s]")

@@ -112,7 +112,8 @@ namespace YarnImpact
                   "Yarn/Failure model",
                   "= progressive needs FE/Constitutive law = Charmetant: it "
                   "damages the fibre term 1/2 k_e I_e^2 of the energy, which "
-                  "the linear transversely isotropic law does not separate");
+                  "the linear transversely isotropic law does not separate "
+                  "(set Yarn/Failure model = sudden with the linear law)");
           // Softening must not snap back in the longest cell: the final
           // strain I_u = 2 G_f / (h k_e I_0) must lie above the onset I_0,
           // i.e. G_f above the elastic energy per area h k_e I_0^2 / 2
