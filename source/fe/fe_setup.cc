@@ -54,7 +54,9 @@ namespace YarnImpact
     YarnModel<Law>::make_grid()
     {
       const auto &yarn = shared.yarn;
-      if (is_part())
+      if (parameters.mesh.given())
+        parameters.mesh.create(tria);
+      else if (is_part())
         create_yarn_part_mesh(tria,
                               yarn,
                               parameters.part_begin,
@@ -288,6 +290,8 @@ namespace YarnImpact
           for (double &m : M)
             m /= n;
         }
+      if (parameters.mesh.given())
+        cell_fibre.push_back({{M[0], M[1], M[2]}});
       // A reference point's coordinate along M (x on the straight yarn).
       const auto along = [this, &M](const Point<3> &X) {
         return parameters.fibre_direction
@@ -381,6 +385,9 @@ namespace YarnImpact
       // have the same owner.
       const double tol = 1e-6 * station_spacing;
       std::vector<bool> seen(reference_coordinate.size(), false);
+      // A given mesh says where its clamps are (GivenMesh).
+      const std::vector<bool> clamped =
+        parameters.mesh.given() ? clamped_dofs() : std::vector<bool>();
       for (const unsigned int c : owned_cells)
         for (unsigned int a = 0; a < n_nodes; ++a)
           {
@@ -400,7 +407,9 @@ namespace YarnImpact
             node_station.push_back(static_cast<unsigned int>(
               std::round((std::abs(x) - station_origin) / station_spacing)));
             std::array<bool, 3> fixed = {{false, false, false}};
-            if (std::abs(std::abs(x) - 0.5 * yarn.length) < tol)
+            if (parameters.mesh.given()
+                  ? bool(clamped[node[0]])
+                  : std::abs(std::abs(x) - 0.5 * yarn.length) < tol)
               fixed = {{true, true, true}};
             if (reduced() && std::abs(x) < tol)
               fixed[0] = true;
@@ -436,6 +445,8 @@ namespace YarnImpact
       top = Utilities::MPI::max(local_top, communicator);
 
       contact_time_step = contact.stable_time_step(communicator);
+      if (parameters.extra_forces)
+        setup_extra_forces();
 
       displacement = 0.;
       velocity     = 0.;
@@ -447,6 +458,41 @@ namespace YarnImpact
         const Observables o = observables();
         (void)o;
       }
+    }
+
+
+    template <class Law>
+    std::vector<bool>
+    YarnModel<Law>::clamped_dofs() const
+    {
+      // The owned and ghost cells hold every face that touches an owned
+      // node (setup_cells()).
+      const auto &partitioner = displacement.get_partitioner();
+      std::vector<bool> clamped(reference_coordinate.size(), false);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == BoundaryIds::clamp)
+              for (const unsigned int v : cell->face(f)->vertex_indices())
+                clamped[partitioner->global_to_local(
+                  cell->face(f)->vertex_dof_index(v, 0))] = true;
+      return clamped;
+    }
+
+
+    template <class Law>
+    void
+    YarnModel<Law>::setup_extra_forces()
+    {
+      std::vector<double> reference(3 * nodes.size());
+      for (unsigned int k = 0; k < nodes.size(); ++k)
+        for (unsigned int d = 0; d < 3; ++d)
+          reference[3 * k + d] = reference_coordinate[nodes[k][d]];
+      extra_nodes = parameters.extra_forces->setup(reference, communicator);
+      extra_x.assign(3 * extra_nodes.size(), 0.);
+      extra_v.assign(3 * extra_nodes.size(), 0.);
+      extra_f.assign(3 * extra_nodes.size(), 0.);
     }
 
 
