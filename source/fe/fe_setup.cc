@@ -38,10 +38,15 @@ namespace YarnImpact
       setup_nodes(area);
       setup_initial_state();
 
-      out << "[fe] mesh: " << tria.n_global_active_cells() << " cells ("
-          << cells_per_layer << " per section, " << n_layers
-          << " along the modelled length), " << dof_handler.n_dofs()
-          << " dofs, " << Utilities::MPI::n_mpi_processes(communicator)
+      out << "[fe] mesh: " << tria.n_global_active_cells() << " cells (";
+      if (parameters.mesh.given())
+        out << "given, " << parameters.n_axial_cells / 2 + 1
+            << " stations along x";
+      else
+        out << cells_per_layer << " per section, " << n_layers
+            << " along the modelled length";
+      out << "), " << dof_handler.n_dofs() << " dofs, "
+          << Utilities::MPI::n_mpi_processes(communicator)
           << " MPI rank(s), cell kernel: " << cell_kernel_variant() << "\n"
           << "[fe] contact penalty " << parameters.contact.penalty
           << " Pa/m: stable step of a surface node on it "
