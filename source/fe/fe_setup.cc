@@ -51,6 +51,8 @@ namespace YarnImpact
           << "[fe] contact penalty " << parameters.contact.penalty
           << " Pa/m: stable step of a surface node on it "
           << contact_time_step * 1e9 << " ns\n";
+      if (parameters.extra_forces)
+        out << parameters.extra_forces->report();
     }
 
 
