@@ -195,6 +195,18 @@ namespace YarnImpact
           require(shared.projectile.diameter < p.n_weft * p.spacing,
                   "Projectile/Diameter",
                   wide_projectile.str());
+          // The sphere must also leave the weft yarns' ends free.
+          std::ostringstream wide_sphere;
+          wide_sphere << "= " << shared.projectile.diameter * 1e3
+                      << " mm must be less than the patch's extent along z "
+                         "(Fabric/Warp yarns x Fabric/Yarn spacing) "
+                      << p.n_warp * p.spacing * 1e3
+                      << " mm for a sphere, or it reaches the clamped edges";
+          require(shared.projectile.shape ==
+                      YarnImpact::Parameters::ProjectileShape::cylinder ||
+                    shared.projectile.diameter < p.n_warp * p.spacing,
+                  "Projectile/Diameter",
+                  wide_sphere.str());
           FE::validate(with_patch(shared), fe_of_patch());
         }
 

@@ -18,6 +18,10 @@
 #               uninterrupted run's.
 #  single_warp  1 warp yarn across 5 weft yarns against Model = fe with
 #               the same crimped yarn (check_history.py single_warp).
+#  sphere       the energy case struck by a sphere (Projectile/Shape) of
+#               the cylinder's diameter and mass instead: the same checks
+#               (check_history.py energy), on 1 and 2 ranks, the two
+#               histories byte for byte the same.
 exe=$1
 src=$2
 case=$3
@@ -121,6 +125,20 @@ case $case in
     run 1 fe.prm
     [ "$rc" -eq 0 ] || fail "fe: exit $rc: $(head -c 300 stderr)"
     /usr/bin/python3 "$here/check_history.py" single_warp fabric fe || failures=$((failures + 1))
+    ;;
+  sphere)
+    shape='subsection Projectile\n  set Shape = sphere\nend\n'
+    for n in 1 2; do
+      patch "sphere_$n" 4 4 2.5e-6 1e-9 "$no_failure$shape" > "sphere_$n.prm"
+      run $n "sphere_$n.prm"
+      [ "$rc" -eq 0 ] || fail "sphere on $n ranks: exit $rc: $(head -c 300 stderr)"
+    done
+    /usr/bin/python3 "$here/check_history.py" energy sphere_1 || failures=$((failures + 1))
+    if cmp -s sphere_1/history_fabric.csv sphere_2/history_fabric.csv; then
+      echo "ok     sphere: the history on 2 ranks is the one on 1 rank, byte for byte"
+    else
+      fail "sphere: the history on 2 ranks differs from the one on 1 rank"
+    fi
     ;;
   *)
     echo "unknown case $case"
