@@ -3,8 +3,8 @@
 and summaries. Prints one line per check, "ok" or "FAILED", and exits 1
 if one failed.
 
-  energy DIR        the 4 x 4 patch hit at 120 m/s, no failure, a history
-                    row at every step, 2.5 us:
+  energy DIR        the 4 x 4 patch hit at 120 m/s by the cylinder or the
+                    sphere, no failure, a history row at every step, 2.5 us:
     (1) energy balance: the projectile's lost kinetic energy against the
         yarns' kinetic, strain and contact energy (projectile and yarn
         contacts) plus the friction dissipated by both contacts, at every
