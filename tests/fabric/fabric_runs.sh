@@ -6,7 +6,9 @@
 #  energy       4 x 4 yarns, 2.5 us, no failure, a history row every step:
 #               the energy balance, the projectile's momentum against the
 #               impulse of the contact force, the yarn contact's forces
-#               balanced (check_history.py energy says against what).
+#               balanced (check_history.py energy says against what); the
+#               displacements of its snapshots symmetric under the half turn
+#               about y (check_symmetry.py).
 #  ranks        4 x 4 yarns, 3.5 us, failure on: the Charmetant law with
 #               sudden and with progressive failure, the linear law with
 #               sudden failure (progressive needs Charmetant): the
@@ -20,8 +22,8 @@
 #               the same crimped yarn (check_history.py single_warp).
 #  sphere       the energy case struck by a sphere (Projectile/Shape) of
 #               the cylinder's diameter and mass instead: the same checks
-#               (check_history.py energy), on 1 and 2 ranks, the two
-#               histories byte for byte the same.
+#               (check_history.py energy, check_symmetry.py), on 1 and 2
+#               ranks, the two histories byte for byte the same.
 exe=$1
 src=$2
 case=$3
@@ -64,9 +66,11 @@ progressive='subsection Yarn\n  set Failure model = progressive\nend\n'
 case $case in
   energy)
     patch energy 4 4 2.5e-6 1e-9 "$no_failure" > energy.prm
+    sed -i 's/set Snapshot interval = 0$/set Snapshot interval = 0.5e-6/' energy.prm
     run 1 energy.prm
     [ "$rc" -eq 0 ] || fail "energy: exit $rc: $(head -c 300 stderr)"
     /usr/bin/python3 "$here/check_history.py" energy energy || failures=$((failures + 1))
+    /usr/bin/python3 "$here/check_symmetry.py" energy || failures=$((failures + 1))
     ;;
   ranks)
     for law in charmetant progressive linear; do
@@ -130,10 +134,12 @@ case $case in
     shape='subsection Projectile\n  set Shape = sphere\nend\n'
     for n in 1 2; do
       patch "sphere_$n" 4 4 2.5e-6 1e-9 "$no_failure$shape" > "sphere_$n.prm"
+      sed -i 's/set Snapshot interval = 0$/set Snapshot interval = 0.5e-6/' "sphere_$n.prm"
       run $n "sphere_$n.prm"
       [ "$rc" -eq 0 ] || fail "sphere on $n ranks: exit $rc: $(head -c 300 stderr)"
     done
     /usr/bin/python3 "$here/check_history.py" energy sphere_1 || failures=$((failures + 1))
+    /usr/bin/python3 "$here/check_symmetry.py" sphere_1 || failures=$((failures + 1))
     if cmp -s sphere_1/history_fabric.csv sphere_2/history_fabric.csv; then
       echo "ok     sphere: the history on 2 ranks is the one on 1 rank, byte for byte"
     else
