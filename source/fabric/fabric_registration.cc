@@ -132,7 +132,10 @@ namespace YarnImpact
           fe.parse_parameters(prm);
         }
 
-        /** The patch's geometry checks, then the refusal of the run. */
+        /** The patch's geometry checks, the run's (no symmetry, no
+         * FE/Crimp, no global refinement, a projectile narrower than the
+         * patch), then FE::validate() of the FE yarns as the model will
+         * make them. */
         void
         validate(const YarnImpact::Parameters::Shared &shared) const override
         {
