@@ -103,6 +103,15 @@ namespace YarnImpact
                             task->parameter,
                             "asks for the " + task->description + " of the " +
                               name + " model: it needs Model = " + name);
+    // The sphere's contact is the FE's (FE::ProjectileContact), given the
+    // node's z; only the fabric's runs are tested with it.
+    for (const std::string &name : run_models())
+      Parameters::require(shared.projectile.shape ==
+                              Parameters::ProjectileShape::cylinder ||
+                            name == "fabric",
+                          "Projectile/Shape",
+                          "= sphere runs with Model = fabric only, not " +
+                            name);
     // Every set-up check that needs no MPI ranks is made here, so that
     // `--check` refuses what the run would, and a run refuses before it
     // writes anything (with Model = both, before the FE part runs).

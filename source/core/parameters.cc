@@ -139,12 +139,12 @@ namespace YarnImpact
       prm.declare_entry("Mass",
                         "9.91e-6",
                         Patterns::Double(),
-                        "Mass of the rigid cylindrical projectile [kg].");
+                        "Mass of the rigid projectile [kg].");
       prm.declare_entry("Diameter",
                         "2.2e-3",
                         Patterns::Double(),
-                        "Diameter of the projectile; its axis is z, across "
-                        "the yarn's width [m].");
+                        "Diameter of the projectile (Shape); the cylinder's "
+                        "axis is z, across the yarn's width [m].");
       prm.declare_entry(
         "Initial velocity",
         "120",
@@ -159,6 +159,13 @@ namespace YarnImpact
         "velocity: the projectile keeps its initial velocity (Smith-theory "
         "verification); the work done on the yarn is then counted in the "
         "energy balance.");
+      prm.declare_entry(
+        "Shape",
+        "cylinder",
+        Patterns::Selection("cylinder|sphere"),
+        "cylinder: its axis along z, across the yarn (the paper); sphere: "
+        "centred on x = z = 0 above the impact point (Model = fabric "
+        "only).");
       prm.leave_subsection();
     }
 
@@ -173,6 +180,8 @@ namespace YarnImpact
       motion =
         (prm.get("Motion") == "free" ? ProjectileMotion::free
                                      : ProjectileMotion::prescribed_velocity);
+      shape = (prm.get("Shape") == "sphere" ? ProjectileShape::sphere
+                                            : ProjectileShape::cylinder);
       prm.leave_subsection();
     }
 

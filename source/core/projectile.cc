@@ -11,6 +11,7 @@ namespace YarnImpact
     , v(-parameters.initial_velocity)
     , is_prescribed(parameters.motion ==
                     Parameters::ProjectileMotion::prescribed_velocity)
+    , is_sphere(parameters.shape == Parameters::ProjectileShape::sphere)
   {}
 
   void

@@ -1,18 +1,17 @@
-// The woven fabric's registration: `Model = fabric` (core/model_registry.h).
-// Its patch is built and checked, but the model is refused before it runs:
-// the contact of its crossing yarns exists (Fabric::YarnContact,
-// doc/fe-model.md section 8.4), but no model steps the yarns with it yet
-// (doc/fe-model.md section 8.3).
+// The woven fabric's registration: `Model = fabric` (core/model_registry.h,
+// doc/fabric.md): the FE yarns of subsection `FE` on the woven patch of
+// subsection `Fabric`, with the contact of their crossings.
 
 #include <yarn_impact/core/model_registry.h>
 #include <yarn_impact/core/parameter_tools.h>
+#include <yarn_impact/fabric/fabric_model.h>
 #include <yarn_impact/fabric/woven_patch.h>
+#include <yarn_impact/fe/fe_model.h>
 
 #include <deal.II/base/parameter_handler.h>
 
 #include <cmath>
 #include <sstream>
-#include <stdexcept>
 
 namespace YarnImpact
 {
@@ -29,11 +28,12 @@ namespace YarnImpact
         static std::string
         help()
         {
-          return "a plain-woven patch of crimped yarns (refused for now: "
-                 "no model steps its yarns with their contact yet)";
+          return "a plain-woven patch of crimped FE yarns with the contact "
+                 "of their crossings";
         }
 
-        /** Subsection `Fabric`. */
+        /** Subsection `Fabric` (the FE yarns read subsection `FE`,
+         * which the FE model declares). */
         static void
         declare_parameters(dealii::ParameterHandler &prm)
         {
@@ -67,6 +67,40 @@ namespace YarnImpact
                             "8",
                             Integer(),
                             "Cells along each yarn per Yarn spacing [-].");
+          prm.enter_subsection("Yarn contact");
+          prm.declare_entry("Penalty",
+                            "5e13",
+                            Double(0.),
+                            "Contact pressure per penetration between "
+                            "crossing yarns; each side is a slave with half "
+                            "of it [Pa/m].");
+          prm.declare_entry("Friction",
+                            "0.2",
+                            Double(0.),
+                            "Coulomb friction coefficient between yarns "
+                            "[-].");
+          prm.declare_entry("Tangential stiffness ratio",
+                            "1",
+                            Double(0.),
+                            "Stick spring's stiffness over the normal one "
+                            "(Cundall-Strack) [-].");
+          prm.declare_entry("Damping ratio",
+                            "0",
+                            Double(0.),
+                            "Normal damping, fraction of the critical "
+                            "damping of a node's mass on its spring [-].");
+          prm.declare_entry("Detection depth",
+                            "20e-6",
+                            Double(0.),
+                            "Deepest penetration that counts as a contact "
+                            "[m].");
+          prm.declare_entry("Skin",
+                            "20e-6",
+                            Double(0.),
+                            "Skin of the candidate search: the lists are "
+                            "built again when a node has moved half of it "
+                            "[m].");
+          prm.leave_subsection();
           prm.leave_subsection();
         }
 
@@ -82,10 +116,26 @@ namespace YarnImpact
           g.amplitude = get_positive_double(prm, "Fabric", "Crimp amplitude");
           g.cells_per_spacing =
             get_positive_integer(prm, "Fabric", "Cells per spacing");
+          prm.enter_subsection("Yarn contact");
+          YarnContactParameters &c = fabric.contact;
+          c.penalty =
+            get_positive_double(prm, "Fabric/Yarn contact", "Penalty");
+          c.friction = prm.get_double("Friction");
+          c.tangential_stiffness_ratio =
+            prm.get_double("Tangential stiffness ratio");
+          c.damping_ratio = prm.get_double("Damping ratio");
+          c.detection_depth =
+            get_positive_double(prm, "Fabric/Yarn contact", "Detection depth");
+          c.skin = get_positive_double(prm, "Fabric/Yarn contact", "Skin");
           prm.leave_subsection();
+          prm.leave_subsection();
+          fe.parse_parameters(prm);
         }
 
-        /** The patch's geometry checks, then the refusal of the run. */
+        /** The patch's geometry checks, the run's (no symmetry, no
+         * FE/Crimp, no global refinement, a projectile narrower than the
+         * patch), then FE::validate() of the FE yarns as the model will
+         * make them. */
         void
         validate(const YarnImpact::Parameters::Shared &shared) const override
         {
@@ -121,14 +171,46 @@ namespace YarnImpact
           require(radius > p.thickness_semi_axis,
                   "Fabric/Crimp amplitude",
                   fold.str());
-          std::ostringstream refused;
-          refused << "= fabric cannot run yet: its woven patch of "
-                  << memory_estimate(shared).n_elements
-                  << " cells is checked, but its crossing yarns press on "
-                     "each other under the projectile and no model steps "
-                     "them with their contact yet (a single crimped yarn "
-                     "runs with Model = fe and FE/Crimp)";
-          require(false, "Model", refused.str());
+          // The fabric is the whole patch, its four edges clamped.
+          require(shared.general.symmetry ==
+                    YarnImpact::Parameters::Symmetry::none,
+                  "Symmetry",
+                  "must be none with Model = fabric: the patch is modelled "
+                  "whole");
+          require(!fe.crimp.crimped(),
+                  "FE/Crimp/Amplitude",
+                  "must be 0 with Model = fabric: its yarns take their "
+                  "crimp from Fabric/Crimp amplitude");
+          require(fe.global_refinements == 0,
+                  "FE/Global refinements",
+                  "must be 0 with Model = fabric: refine along the yarns "
+                  "with Fabric/Cells per spacing, across with "
+                  "FE/Section refinements");
+          // The cylinder spans the patch along z; along x it must leave
+          // the clamped ends of the warp yarns free.
+          std::ostringstream wide_projectile;
+          wide_projectile
+            << "= " << shared.projectile.diameter * 1e3
+            << " mm must be less than the patch's extent across the "
+               "projectile's axis (Fabric/Weft yarns x Fabric/Yarn spacing) "
+            << p.n_weft * p.spacing * 1e3
+            << " mm, or the projectile reaches the clamped edges";
+          require(shared.projectile.diameter < p.n_weft * p.spacing,
+                  "Projectile/Diameter",
+                  wide_projectile.str());
+          // The sphere must also leave the weft yarns' ends free.
+          std::ostringstream wide_sphere;
+          wide_sphere << "= " << shared.projectile.diameter * 1e3
+                      << " mm must be less than the patch's extent along z "
+                         "(Fabric/Warp yarns x Fabric/Yarn spacing) "
+                      << p.n_warp * p.spacing * 1e3
+                      << " mm for a sphere, or it reaches the clamped edges";
+          require(shared.projectile.shape ==
+                      YarnImpact::Parameters::ProjectileShape::cylinder ||
+                    shared.projectile.diameter < p.n_warp * p.spacing,
+                  "Projectile/Diameter",
+                  wide_sphere.str());
+          FE::validate(with_patch(shared), fe_of_patch());
         }
 
         MemoryEstimate
@@ -137,9 +219,10 @@ namespace YarnImpact
         {
           const WovenPatchGeometry p = patch(shared);
           MemoryEstimate e;
-          // Every yarn's 12-cell section along the patch: n s long.
+          // Every yarn's 12-cell section, refined, along the patch: n s
+          // long.
           e.n_elements =
-            12. * p.cells_per_spacing *
+            12. * std::pow(4., fe.section_refinements) * p.cells_per_spacing *
             (p.n_warp * double(p.n_weft) + p.n_weft * double(p.n_warp));
           e.bytes        = 6.5e3 * e.n_elements;
           e.element_name = "cells";
@@ -147,12 +230,13 @@ namespace YarnImpact
           return e;
         }
 
-        /** Never reached: validate() refuses every fabric. */
         std::unique_ptr<ImpactModel>
-        create(const YarnImpact::Parameters::Shared &,
-               const MPI_Comm) const override
+        create(const YarnImpact::Parameters::Shared &shared,
+               const MPI_Comm communicator) const override
         {
-          throw std::logic_error("Model = fabric: refused by validate()");
+          FabricParameters f = fabric;
+          f.patch            = g;
+          return create_fabric_model(shared, fe, f, communicator);
         }
 
       private:
@@ -166,7 +250,30 @@ namespace YarnImpact
           return p;
         }
 
+        /** @p shared with the warp yarns' span as its Yarn/Length, as
+         * create_fabric_model() gives the FE model. */
+        YarnImpact::Parameters::Shared
+        with_patch(const YarnImpact::Parameters::Shared &shared) const
+        {
+          YarnImpact::Parameters::Shared copy = shared;
+          copy.yarn.length                    = g.n_weft * g.spacing;
+          return copy;
+        }
+
+        /** The FE parameters as create_fabric_model() gives them (the
+         * cells along a warp yarn), for FE::validate(). */
+        FE::Parameters
+        fe_of_patch() const
+        {
+          FE::Parameters p = fe;
+          p.n_axial_cells  = g.n_weft * g.cells_per_spacing;
+          p.n_axial_cells += p.n_axial_cells % 2;
+          return p;
+        }
+
         WovenPatchGeometry g;
+        FabricParameters fabric;
+        FE::Parameters fe;
       };
     } // namespace
   }   // namespace Fabric

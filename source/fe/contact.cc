@@ -74,9 +74,10 @@ namespace YarnImpact
       const double dt)
     {
       // A surface node touches within the projectile's radius.
-      const double R  = projectile.radius();
-      const double yc = projectile.axis_position();
-      const double vp = projectile.velocity();
+      const double R    = projectile.radius();
+      const double yc   = projectile.axis_position();
+      const double vp   = projectile.velocity();
+      const bool sphere = projectile.sphere();
       // The law is chosen once per call; the loop over the nodes is
       // instantiated for each law.
       Contact::with_contact_law(parameters.law, [&](auto tag) {
@@ -92,7 +93,19 @@ namespace YarnImpact
             double delta, n[3];
             reaction[k]      = 0.;
             stored_energy[k] = 0.;
-            if (!Contact::projectile_overlap(px, py, yc, R, delta, n))
+            // The sphere (Model = fabric) also sees the node's z.
+            const bool touches =
+              sphere
+                ? Contact::sphere_overlap(px,
+                                          py,
+                                          reference_coordinate[node[2]] +
+                                            displacement.local_element(node[2]),
+                                          yc,
+                                          R,
+                                          delta,
+                                          n)
+                : Contact::projectile_overlap(px, py, yc, R, delta, n);
+            if (!touches)
               {
                 if constexpr (history_size > 0)
                   touching[k] = 0;

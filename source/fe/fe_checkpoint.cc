@@ -59,6 +59,11 @@ namespace YarnImpact
       out.tag("fe energies");
       out.put(projectile_speed);
       contact.save(out);
+      if (parameters.extra_forces)
+        {
+          out.tag("fe extra forces");
+          parameters.extra_forces->save(out);
+        }
     }
 
 
@@ -86,6 +91,11 @@ namespace YarnImpact
       in.tag("fe energies");
       in.get(projectile_speed);
       contact.load(in);
+      if (parameters.extra_forces)
+        {
+          in.tag("fe extra forces");
+          parameters.extra_forces->load(in);
+        }
     }
 
 

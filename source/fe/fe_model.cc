@@ -109,9 +109,17 @@ namespace YarnImpact
         }
       rate2                = Utilities::MPI::max(rate2, communicator);
       const double dt_bulk = 1. / std::sqrt(rate2);
-      const double dt_waves =
+      double dt_waves =
         1. / std::sqrt(1. / (dt_bulk * dt_bulk) +
                        1. / (contact_time_step * contact_time_step));
+      // The extra forces' springs act on the same nodes: their squared
+      // frequencies add.
+      if (parameters.extra_forces)
+        {
+          const double dt_extra = parameters.extra_forces->stable_time_step();
+          dt_waves              = 1. / std::sqrt(1. / (dt_waves * dt_waves) +
+                                    1. / (dt_extra * dt_extra));
+        }
       // The wave bound above holds for small strain increments. A fast
       // impact crushes the cells under the projectile faster than any wave
       // runs: no node may close more than a quarter of the smallest cell
@@ -148,9 +156,31 @@ namespace YarnImpact
                          velocity,
                          force,
                          dt);
+      if (parameters.extra_forces)
+        add_extra_forces(dt);
       ReproducibleSum reaction(1);
       contact.add_reactions(reaction, 0);
       return symmetry * reaction.sum(communicator)[0];
+    }
+
+
+    template <class Law>
+    void
+    YarnModel<Law>::add_extra_forces(const double dt)
+    {
+      for (unsigned int k = 0; k < extra_nodes.size(); ++k)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            const unsigned int i = nodes[extra_nodes[k]][d];
+            extra_x[3 * k + d] =
+              reference_coordinate[i] + displacement.local_element(i);
+            extra_v[3 * k + d] = velocity.local_element(i);
+          }
+      std::fill(extra_f.begin(), extra_f.end(), 0.);
+      parameters.extra_forces->add_forces(extra_x, extra_v, dt, extra_f);
+      for (unsigned int k = 0; k < extra_nodes.size(); ++k)
+        for (unsigned int d = 0; d < 3; ++d)
+          force.local_element(nodes[extra_nodes[k]][d]) += extra_f[3 * k + d];
     }
 
 

@@ -157,6 +157,12 @@ namespace YarnImpact
       o.elastic_energy                = symmetry * total[1];
       o.contact_energy                = symmetry * total[2];
       o.dissipated_energy             = symmetry * total[3];
+      // The extra forces' energy and dissipation are the whole model's.
+      if (parameters.extra_forces)
+        {
+          o.contact_energy += parameters.extra_forces->energy();
+          o.dissipated_energy += parameters.extra_forces->dissipated();
+        }
 
       const bool quarter =
         shared.general.symmetry == YarnImpact::Parameters::Symmetry::quarter;
@@ -180,7 +186,8 @@ namespace YarnImpact
 
       // Only a yarn with failed or eroded cells can be cut (and the check
       // is collective: the counts are the same on every rank).
-      o.cut_through = (o.n_failed > 0 || o.n_eroded > 0) && yarn_cut_through();
+      o.cut_through = (o.n_failed > 0 || o.n_eroded > 0) &&
+                      !parameters.mesh.given() && yarn_cut_through();
       return o;
     }
 
@@ -315,6 +322,31 @@ namespace YarnImpact
         data_out.add_data_vector(fields[k],
                                  names[k],
                                  DataOut<3>::type_cell_data);
+      // On a given mesh of several yarns: each cell's yarn and its mean
+      // fibre direction in the reference configuration.
+      const char *mesh_names[] = {"yarn",
+                                  "fibre_direction_x",
+                                  "fibre_direction_y",
+                                  "fibre_direction_z"};
+      std::vector<Vector<float>> mesh_fields;
+      if (parameters.mesh.given())
+        {
+          mesh_fields.assign(4, Vector<float>(n_cells));
+          std::vector<unsigned int> yarn(n_cells, 0);
+          for (const auto &cell : tria.active_cell_iterators())
+            yarn[cell->active_cell_index()] = cell->material_id();
+          for (const unsigned int c : owned_cells)
+            {
+              const unsigned int id = cell_index[c];
+              mesh_fields[0][id]    = yarn[id];
+              for (unsigned int d = 0; d < 3; ++d)
+                mesh_fields[1 + d][id] = cell_fibre[c][d];
+            }
+          for (unsigned int k = 0; k < 4; ++k)
+            data_out.add_data_vector(mesh_fields[k],
+                                     mesh_names[k],
+                                     DataOut<3>::type_cell_data);
+        }
       // The geometry written is the deformed one.
       MappingQEulerian<3, VectorType> mapping(1, dof_handler, displacement);
       data_out.build_patches(mapping);

@@ -38,14 +38,21 @@ namespace YarnImpact
       setup_nodes(area);
       setup_initial_state();
 
-      out << "[fe] mesh: " << tria.n_global_active_cells() << " cells ("
-          << cells_per_layer << " per section, " << n_layers
-          << " along the modelled length), " << dof_handler.n_dofs()
-          << " dofs, " << Utilities::MPI::n_mpi_processes(communicator)
+      out << "[fe] mesh: " << tria.n_global_active_cells() << " cells (";
+      if (parameters.mesh.given())
+        out << "given, " << parameters.n_axial_cells / 2 + 1
+            << " stations along x";
+      else
+        out << cells_per_layer << " per section, " << n_layers
+            << " along the modelled length";
+      out << "), " << dof_handler.n_dofs() << " dofs, "
+          << Utilities::MPI::n_mpi_processes(communicator)
           << " MPI rank(s), cell kernel: " << cell_kernel_variant() << "\n"
           << "[fe] contact penalty " << parameters.contact.penalty
           << " Pa/m: stable step of a surface node on it "
           << contact_time_step * 1e9 << " ns\n";
+      if (parameters.extra_forces)
+        out << parameters.extra_forces->report();
     }
 
 
@@ -54,7 +61,9 @@ namespace YarnImpact
     YarnModel<Law>::make_grid()
     {
       const auto &yarn = shared.yarn;
-      if (is_part())
+      if (parameters.mesh.given())
+        parameters.mesh.create(tria);
+      else if (is_part())
         create_yarn_part_mesh(tria,
                               yarn,
                               parameters.part_begin,
@@ -291,6 +300,8 @@ namespace YarnImpact
           for (double &m : M)
             m /= n;
         }
+      if (parameters.mesh.given())
+        cell_fibre.push_back({{M[0], M[1], M[2]}});
       // A reference point's coordinate along M (x on the straight yarn).
       const auto along = [this, &M](const Point<3> &X) {
         return parameters.fibre_direction
@@ -384,6 +395,9 @@ namespace YarnImpact
       // have the same owner.
       const double tol = 1e-6 * station_spacing;
       std::vector<bool> seen(reference_coordinate.size(), false);
+      // A given mesh says where its clamps are (GivenMesh).
+      const std::vector<bool> clamped =
+        parameters.mesh.given() ? clamped_dofs() : std::vector<bool>();
       for (const unsigned int c : owned_cells)
         for (unsigned int a = 0; a < n_nodes; ++a)
           {
@@ -403,7 +417,9 @@ namespace YarnImpact
             node_station.push_back(static_cast<unsigned int>(
               std::round((std::abs(x) - station_origin) / station_spacing)));
             std::array<bool, 3> fixed = {{false, false, false}};
-            if (std::abs(std::abs(x) - 0.5 * yarn.length) < tol)
+            if (parameters.mesh.given()
+                  ? bool(clamped[node[0]])
+                  : std::abs(std::abs(x) - 0.5 * yarn.length) < tol)
               fixed = {{true, true, true}};
             if (reduced() && std::abs(x) < tol)
               fixed[0] = true;
@@ -439,6 +455,8 @@ namespace YarnImpact
       top = Utilities::MPI::max(local_top, communicator);
 
       contact_time_step = contact.stable_time_step(communicator);
+      if (parameters.extra_forces)
+        setup_extra_forces();
 
       displacement = 0.;
       velocity     = 0.;
@@ -450,6 +468,41 @@ namespace YarnImpact
         const Observables o = observables();
         (void)o;
       }
+    }
+
+
+    template <class Law>
+    std::vector<bool>
+    YarnModel<Law>::clamped_dofs() const
+    {
+      // The owned and ghost cells hold every face that touches an owned
+      // node (setup_cells()).
+      const auto &partitioner = displacement.get_partitioner();
+      std::vector<bool> clamped(reference_coordinate.size(), false);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == BoundaryIds::clamp)
+              for (const unsigned int v : cell->face(f)->vertex_indices())
+                clamped[partitioner->global_to_local(
+                  cell->face(f)->vertex_dof_index(v, 0))] = true;
+      return clamped;
+    }
+
+
+    template <class Law>
+    void
+    YarnModel<Law>::setup_extra_forces()
+    {
+      std::vector<double> reference(3 * nodes.size());
+      for (unsigned int k = 0; k < nodes.size(); ++k)
+        for (unsigned int d = 0; d < 3; ++d)
+          reference[3 * k + d] = reference_coordinate[nodes[k][d]];
+      extra_nodes = parameters.extra_forces->setup(reference, communicator);
+      extra_x.assign(3 * extra_nodes.size(), 0.);
+      extra_v.assign(3 * extra_nodes.size(), 0.);
+      extra_f.assign(3 * extra_nodes.size(), 0.);
     }
 
 

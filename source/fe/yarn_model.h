@@ -10,6 +10,7 @@
 #include <yarn_impact/core/parameters.h>
 #include <yarn_impact/fe/cell_kernel.h>
 #include <yarn_impact/fe/contact.h>
+#include <yarn_impact/fe/extra_forces.h>
 #include <yarn_impact/fe/fe_model.h>
 #include <yarn_impact/fe/parameters.h>
 
@@ -203,6 +204,11 @@ namespace YarnImpact
       double
       section_height(const dealii::Point<3> &X) const
       {
+        if (parameters.mesh.section_height)
+          {
+            const double xyz[3] = {X[0], X[1], X[2]};
+            return parameters.mesh.section_height(xyz);
+          }
         if (!crimped)
           return X[1];
         const double s = crimped->abscissa_of(X);
@@ -268,6 +274,22 @@ namespace YarnImpact
       void
       setup_nodes(const VectorType &area);
 
+      /** For setup_nodes() on a given mesh (GivenMesh): whether each local
+       * dof lies on a face of BoundaryIds::clamp, on its x dof. */
+      std::vector<bool>
+      clamped_dofs() const;
+
+      /** For setup_initial_state(): the owned nodes that the extra forces
+       * (FE::Parameters::extra_forces) act on, from their reference
+       * positions. */
+      void
+      setup_extra_forces();
+
+      /** For compute_forces(): the extra forces at the current state,
+       * over the step @p dt [s], added to the owned dofs. */
+      void
+      add_extra_forces(const double dt);
+
       /** Set-up step 5: the mass [kg] and top [m] of the yarn, the contact's
        * stable step [s], the state at rest and its section widths. */
       void
@@ -325,6 +347,13 @@ namespace YarnImpact
       std::vector<unsigned int> node_station;
       /** The projectile contact of the owned surface nodes. */
       ProjectileContact contact;
+      /** The owned nodes (indices into `nodes`) of the extra forces, and
+       * their positions [m], velocities [m/s] and forces [N], 3 each. */
+      std::vector<unsigned int> extra_nodes;
+      std::vector<double> extra_x, extra_v, extra_f;
+      /** On a given mesh: each cell's mean fibre direction [-], for the
+       * snapshots. */
+      std::vector<std::array<double, 3>> cell_fibre;
 
       unsigned int n_stations      = 0;
       unsigned int n_layers        = 0;

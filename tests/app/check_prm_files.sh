@@ -3,7 +3,7 @@
 exe=$1
 src=$2
 failures=0
-for prm in "$src"/prm/*.prm "$src"/prm/study/*.prm "$src"/prm/elementary/*.prm; do
+for prm in "$src"/prm/*.prm "$src"/prm/study/*.prm "$src"/prm/elementary/*.prm "$src"/prm/fabric/*.prm; do
   if "$exe" --check "$prm" > /dev/null; then echo "ok     $prm"; else echo "FAILED $prm"; failures=$((failures + 1)); fi
 done
 [ $failures -eq 0 ]

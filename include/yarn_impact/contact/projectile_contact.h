@@ -39,6 +39,34 @@ namespace YarnImpact
     }
 
 
+    /**
+     * projectile_overlap() for the rigid sphere centred at (0, @p centre_y,
+     * 0) [m]: the point at (@p x, @p y, @p z) [m] touches when it is
+     * closer to the centre than @p reach [m]; the unit normal @p n points
+     * from the centre to the point.
+     */
+    inline bool
+    sphere_overlap(const double x,
+                   const double y,
+                   const double z,
+                   const double centre_y,
+                   const double reach,
+                   double &delta,
+                   double *n)
+    {
+      const double ex = x, ey = y - centre_y, ez = z;
+      const double r2 = ex * ex + ey * ey + ez * ez;
+      if (r2 >= reach * reach)
+        return false;
+      const double rho = std::sqrt(r2);
+      delta            = reach - rho;
+      n[0]             = ex / rho;
+      n[1]             = ey / rho;
+      n[2]             = ez / rho;
+      return true;
+    }
+
+
     /** The velocity @p v_rel [m/s] of a point moving at @p v [m/s]
      * relative to the projectile moving at @p projectile_velocity [m/s]
      * along y. */

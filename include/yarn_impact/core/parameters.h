@@ -87,13 +87,22 @@ namespace YarnImpact
       prescribed_velocity, ///< constant velocity (Smith-theory verification)
     };
 
-    /** The rigid cylindrical projectile (subsection `Projectile`). */
+    /** The projectile's shape (`Projectile/Shape`). */
+    enum class ProjectileShape
+    {
+      cylinder, ///< the paper's: its axis along z, across the yarn
+      sphere,   ///< centred on x = z = 0 (Model = fabric only)
+    };
+
+    /** The rigid projectile (subsection `Projectile`). */
     struct Projectile
     {
       /** Mass of the projectile [kg]. */
       double mass = 9.91e-6;
-      /** Diameter of the cylinder [m]. */
+      /** Diameter of the cylinder or the sphere [m]. */
       double diameter = 2.2e-3;
+      /** Cylinder along z, or sphere. */
+      ProjectileShape shape = ProjectileShape::cylinder;
       /** Impact speed, towards -y [m/s]. */
       double initial_velocity = 120.;
       /** Free flight or prescribed constant velocity. */

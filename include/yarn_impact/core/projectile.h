@@ -8,7 +8,10 @@ namespace YarnImpact
 {
   /**
    * The rigid cylindrical projectile. Its axis is parallel to z (across the
-   * yarn's width); it moves along y only. At t = 0 its lowest line touches
+   * yarn's width); it moves along y only. A sphere (`Projectile/Shape`,
+   * Model = fabric only) has its centre on the line x = z = 0 where the
+   * cylinder has its axis: everything here holds for it with "centre" for
+   * "axis" and "point" for "line". At t = 0 its lowest line touches
    * the top of the yarn at mid-span: the axis is at
    * \f$y_c = a_y + R\f$, where \f$a_y\f$ is the thickness semi-axis.
    *
@@ -38,11 +41,19 @@ namespace YarnImpact
       y  = y0;
     }
 
-    /** Radius of the cylinder [m]. */
+    /** Radius of the cylinder or the sphere [m]. */
     double
     radius() const
     {
       return r;
+    }
+
+    /** Whether the projectile is a sphere (centred on x = z = 0), not the
+     * cylinder along z. */
+    bool
+    sphere() const
+    {
+      return is_sphere;
     }
 
     /** Mass [kg]. */
@@ -135,6 +146,7 @@ namespace YarnImpact
     double y;
     double v;
     bool is_prescribed;
+    bool is_sphere;
     double work = 0.;
   };
 } // namespace YarnImpact

@@ -5,18 +5,52 @@
 #include <yarn_impact/fe/failure_law.h>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace dealii
 {
   class ParameterHandler;
-}
+  template <int dim, int spacedim>
+  class Triangulation;
+} // namespace dealii
 
 namespace YarnImpact
 {
   namespace FE
   {
+    class ExtraForces;
+
+    /**
+     * A mesh that a model made of several FE yarns gives the FE model
+     * (`Model = fabric`, doc/fabric.md), never a `.prm`: then the FE
+     * model meshes nothing itself, clamps the nodes on the faces of
+     * BoundaryIds::clamp (whatever their position), and has no cut-through
+     * (several yarns make no single load path). The stations still go by
+     * the reference x, over [-L/2, L/2] in FE::Parameters::n_axial_cells,
+     * L the `Yarn/Length` the model is given.
+     */
+    struct GivenMesh
+    {
+      /** Create the whole mesh, not refined, with the boundary ids
+       * BoundaryIds::lateral and BoundaryIds::clamp and the material id of
+       * each cell's yarn. Empty: the FE model's own yarn. */
+      std::function<void(dealii::Triangulation<3, 3> &)> create;
+      /** The height [m] of the reference point X [m] (the argument, 3
+       * values) across its yarn towards the projectile, along its
+       * section's normal: it places a cell's depth below the struck face
+       * (CellData::depth). */
+      std::function<double(const double *)> section_height;
+
+      /** Whether a mesh is given. */
+      bool
+      given() const
+      {
+        return static_cast<bool>(create);
+      }
+    };
+
     /** Constitutive law of the continuum yarn. */
     enum class LawType
     {
@@ -162,6 +196,13 @@ namespace YarnImpact
        * straight path. A cell's crack band width and the stable step's
        * fibre axis are then measured along its mean fibre direction. */
       std::function<void(const double *, double *)> fibre_direction;
+      /** Set by a model made of several yarns, never by a `.prm`: its
+       * mesh (GivenMesh; none by default). */
+      GivenMesh mesh;
+      /** Set by a model made of several yarns, never by a `.prm`: forces
+       * it adds on the FE nodes, with their energy, dissipation, stable
+       * step and checkpoint (ExtraForces). None by default. */
+      std::shared_ptr<ExtraForces> extra_forces;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

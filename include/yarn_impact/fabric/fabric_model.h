@@ -1,0 +1,49 @@
+#ifndef yarn_impact_fabric_fabric_model_h
+#define yarn_impact_fabric_fabric_model_h
+
+#include <yarn_impact/core/impact_model.h>
+#include <yarn_impact/core/parameters.h>
+#include <yarn_impact/fabric/woven_patch.h>
+#include <yarn_impact/fabric/yarn_contact.h>
+#include <yarn_impact/fe/parameters.h>
+
+#include <mpi.h>
+
+#include <memory>
+
+namespace YarnImpact
+{
+  namespace Fabric
+  {
+    /** What `Model = fabric` is made of (subsection `Fabric`, and the FE
+     * yarns' subsection `FE`). */
+    struct FabricParameters
+    {
+      /** The patch; its section is that of subsection `Yarn`. */
+      WovenPatchGeometry patch;
+      /** The contact of crossing yarns (subsection `Fabric/Yarn
+       * contact`). */
+      YarnContactParameters contact;
+    };
+
+    /**
+     * The FE model of subsection `FE` (its law, failure and projectile
+     * contact; FE::Parameters) on the woven patch @p fabric.patch
+     * (doc/fabric.md): the patch's mesh and fibre directions given to the
+     * FE model (FE::GivenMesh, FE::Parameters::fibre_direction), the ends
+     * of every yarn clamped, and the YarnContact of crossing yarns as its
+     * extra forces (FE::ExtraForces), its surface made from the whole mesh
+     * on every rank. The struck face is +y, the projectile's axis z, across
+     * the warp yarns at the patch's centre. Its name is "fabric".
+     * @param shared the run's parameters; the model uses a copy whose
+     * `Yarn/Length` is the warp yarns' span, n_weft s [m]
+     */
+    std::unique_ptr<ImpactModel>
+    create_fabric_model(const YarnImpact::Parameters::Shared &shared,
+                        const FE::Parameters &fe,
+                        const FabricParameters &fabric,
+                        const MPI_Comm communicator);
+  } // namespace Fabric
+} // namespace YarnImpact
+
+#endif

@@ -1,0 +1,353 @@
+// `Model = fabric`: the FE model on the woven patch, with the contact of
+// crossing yarns as its extra forces (doc/fabric.md). The fabric is a
+// layer above the FE model (doc/architecture.md): it gives the FE model
+// its mesh, fibre directions and clamps (FE::GivenMesh) and the
+// YarnContact (FE::ExtraForces), and the FE model steps the yarns.
+
+#include <yarn_impact/core/crimped_yarn.h>
+#include <yarn_impact/fabric/fabric_model.h>
+#include <yarn_impact/fe/extra_forces.h>
+#include <yarn_impact/fe/fe_model.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/tria.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+namespace YarnImpact
+{
+  namespace Fabric
+  {
+    namespace
+    {
+      /**
+       * The YarnContact of the patch's crossing yarns as the FE model's
+       * extra forces: its surface is the lateral surface of the whole
+       * mesh, made on every rank before the FE model distributes its own
+       * copy; each rank's nodes on it are the owned FE nodes found at the
+       * same reference position (the two meshes are made by the same
+       * code, so that their vertices are equal bit for bit).
+       */
+      class YarnContactForces : public FE::ExtraForces
+      {
+      public:
+        /** @param surface the lateral surface of the whole patch */
+        YarnContactForces(const YarnContactParameters &parameters,
+                          ContactSurface &&surface)
+          : parameters(parameters)
+          , surface(std::move(surface))
+        {}
+
+        std::vector<unsigned int>
+        setup(const std::vector<double> &reference,
+              const MPI_Comm communicator) override
+        {
+          std::map<std::array<double, 3>, unsigned int> index;
+          for (unsigned int n = 0; n < surface.n_nodes(); ++n)
+            index.emplace(std::array<double, 3>{{surface.reference[n][0],
+                                                 surface.reference[n][1],
+                                                 surface.reference[n][2]}},
+                          n);
+          // (surface node, FE node), in the surface's order.
+          std::vector<std::pair<unsigned int, unsigned int>> found;
+          for (unsigned int k = 0; 3 * k < reference.size(); ++k)
+            {
+              const auto it = index.find({{reference[3 * k],
+                                           reference[3 * k + 1],
+                                           reference[3 * k + 2]}});
+              if (it != index.end())
+                found.emplace_back(it->second, k);
+            }
+          std::sort(found.begin(), found.end());
+          std::vector<unsigned int> owned, nodes;
+          for (const auto &f : found)
+            {
+              owned.push_back(f.first);
+              nodes.push_back(f.second);
+            }
+          // Throws if some surface node is owned by no rank.
+          contact.emplace(parameters, surface, owned, communicator);
+          this->communicator = communicator;
+          return nodes;
+        }
+
+        void
+        add_forces(const std::vector<double> &x,
+                   const std::vector<double> &v,
+                   const double dt,
+                   std::vector<double> &force) override
+        {
+          // force holds only these forces (FE model): their sums over
+          // the steps, for the check that they balance (remarks()).
+          contact->add_forces(x, v, dt, force);
+          for (unsigned int i = 0; i < force.size(); ++i)
+            {
+              net[i % 3] += force[i];
+              magnitude += std::abs(force[i]);
+            }
+        }
+
+        /** The contacts' state and the check of their forces' balance for
+         * the run summary: the sum over the steps of the net force,
+         * whose every contact's forces cancel to round-off, over the sum
+         * of its components' magnitudes [-]. Collective. */
+        std::string
+        remarks() const
+        {
+          double sums[4] = {net[0], net[1], net[2], magnitude};
+          MPI_Allreduce(MPI_IN_PLACE,
+                        sums,
+                        4,
+                        MPI_DOUBLE,
+                        MPI_SUM,
+                        communicator);
+          const double balance =
+            std::sqrt(sums[0] * sums[0] + sums[1] * sums[1] +
+                      sums[2] * sums[2]) /
+            std::max(sums[3], 1e-300);
+          const unsigned int touching = contact->n_touching();
+          const double energy = contact->energy(), work = contact->dissipated();
+          std::ostringstream s;
+          s << "yarn contact: " << touching << " touching contacts at the end, "
+            << contact->n_rebuilds() << " candidate lists built; energy "
+            << energy * 1e3 << " mJ, dissipated " << work * 1e3
+            << " mJ; net force over the sum of |forces|, all steps, "
+            << balance;
+          return s.str();
+        }
+
+        double
+        stable_time_step() const override
+        {
+          return contact->stable_time_step();
+        }
+
+        double
+        energy() const override
+        {
+          return contact->energy();
+        }
+
+        double
+        dissipated() const override
+        {
+          return contact->dissipated();
+        }
+
+        void
+        save(Checkpoint::Writer &out) const override
+        {
+          contact->save(out);
+          out.put(std::vector<double>{net[0], net[1], net[2], magnitude});
+        }
+
+        void
+        load(Checkpoint::Reader &in) override
+        {
+          contact->load(in);
+          std::vector<double> sums(4);
+          in.get_same_size(sums, "sums of the yarn contact's forces");
+          std::copy(sums.begin(), sums.begin() + 3, net);
+          magnitude = sums[3];
+        }
+
+        std::string
+        report() const override
+        {
+          std::ostringstream s;
+          s << "[fabric] yarn contact: " << surface.n_nodes()
+            << " surface nodes, " << surface.faces.size() << " faces, penalty "
+            << parameters.penalty << " Pa/m, friction " << parameters.friction
+            << ": stable step of a node on its springs "
+            << contact->stable_time_step() * 1e9 << " ns\n";
+          return s.str();
+        }
+
+      private:
+        const YarnContactParameters parameters;
+        const ContactSurface surface;
+        std::optional<YarnContact> contact;
+        MPI_Comm communicator = MPI_COMM_SELF;
+        /** Sums over the steps of this rank's yarn-contact forces [N] and
+         * of their components' magnitudes [N]. */
+        double net[3] = {0., 0., 0.}, magnitude = 0.;
+      };
+
+
+      /**
+       * The FE model of the patch under the name "fabric", with the copy
+       * of the run's parameters it refers to, and the axial properties of
+       * one of its yarns.
+       */
+      class FabricModel : public ImpactModel
+      {
+      public:
+        /** @param yarn_length the length of all yarns' centrelines [m] */
+        FabricModel(
+          std::unique_ptr<YarnImpact::Parameters::Shared> &&shared_copy,
+          const FE::Parameters &fe_parameters,
+          std::shared_ptr<const YarnContactForces> yarn_contact,
+          const double yarn_length,
+          const MPI_Comm communicator)
+          : shared(std::move(shared_copy))
+          , fe(FE::create_model(*shared, fe_parameters, communicator))
+          , yarn_contact(std::move(yarn_contact))
+          , yarn_length(yarn_length)
+        {}
+
+        std::string
+        name() const override
+        {
+          return "fabric";
+        }
+        void
+        setup(const Projectile &projectile, std::ostream &out) override
+        {
+          fe->setup(projectile, out);
+        }
+        double
+        yarn_top() const override
+        {
+          return fe->yarn_top();
+        }
+        double
+        stable_time_step() const override
+        {
+          return fe->stable_time_step();
+        }
+        double
+        compute_forces(const Projectile &projectile, const double dt) override
+        {
+          return fe->compute_forces(projectile, dt);
+        }
+        void
+        kick(const double dt) override
+        {
+          fe->kick(dt);
+        }
+        void
+        drift(const double dt) override
+        {
+          fe->drift(dt);
+        }
+        Observables
+        observables() const override
+        {
+          return fe->observables();
+        }
+        /** The FE's, with the area of one yarn's section: the patch's mass
+         * over its density and its yarns' total length. */
+        AxialProperties
+        axial_properties() const override
+        {
+          AxialProperties a = fe->axial_properties();
+          a.area            = fe->mass() / (a.density * yarn_length);
+          return a;
+        }
+        double
+        mass() const override
+        {
+          return fe->mass();
+        }
+        std::string
+        write_snapshot(const std::string &directory,
+                       const unsigned int index,
+                       const double time) const override
+        {
+          return fe->write_snapshot(directory, index, time);
+        }
+        unsigned long
+        n_elements() const override
+        {
+          return fe->n_elements();
+        }
+        void
+        save_state(Checkpoint::Writer &out) const override
+        {
+          fe->save_state(out);
+        }
+        void
+        load_state(Checkpoint::Reader &in) override
+        {
+          fe->load_state(in);
+        }
+        /** The yarn contact's (YarnContactForces::remarks()). */
+        std::string
+        remarks() const override
+        {
+          return yarn_contact->remarks();
+        }
+
+      private:
+        // Before the model, which refers to it.
+        const std::unique_ptr<YarnImpact::Parameters::Shared> shared;
+        const std::unique_ptr<ImpactModel> fe;
+        const std::shared_ptr<const YarnContactForces> yarn_contact;
+        const double yarn_length;
+      };
+    } // namespace
+
+
+    std::unique_ptr<ImpactModel>
+    create_fabric_model(const YarnImpact::Parameters::Shared &shared,
+                        const FE::Parameters &fe,
+                        const FabricParameters &fabric,
+                        const MPI_Comm communicator)
+    {
+      WovenPatchGeometry g  = fabric.patch;
+      g.thickness_semi_axis = shared.yarn.thickness_semi_axis;
+      g.width_semi_axis     = shared.yarn.width_semi_axis;
+      g.section_refinements = fe.section_refinements;
+      const auto patch      = std::make_shared<const WovenPatch>(g);
+
+      // The stations go by x over the warp yarns' span (FE::GivenMesh).
+      auto copy = std::make_unique<YarnImpact::Parameters::Shared>(shared);
+      copy->yarn.length = g.n_weft * g.spacing;
+      FE::Parameters p  = fe;
+      p.n_axial_cells   = g.n_weft * g.cells_per_spacing;
+      p.n_axial_cells += p.n_axial_cells % 2;
+      p.crimp       = FE::CrimpParameters();
+      p.mesh.create = [patch](dealii::Triangulation<3, 3> &mesh) {
+        patch->create_mesh(mesh);
+      };
+      p.mesh.section_height = [patch](const double *xyz) {
+        const dealii::Point<3> X(xyz[0], xyz[1], xyz[2]);
+        const unsigned int id    = patch->yarn_of(X);
+        const CrimpedYarn &y     = patch->yarn(id);
+        const dealii::Point<3> P = patch->to_yarn_frame(id, X);
+        const double s           = y.abscissa_of(P);
+        return (P - y.centreline(s)) * y.normal(s);
+      };
+      p.fibre_direction = [patch](const double *xyz, double *M) {
+        const dealii::Tensor<1, 3> t =
+          patch->fibre_direction(dealii::Point<3>(xyz[0], xyz[1], xyz[2]));
+        for (unsigned int d = 0; d < 3; ++d)
+          M[d] = t[d];
+      };
+
+      // The surface of the whole mesh, before the FE model distributes it.
+      dealii::Triangulation<3> whole;
+      patch->create_mesh(whole);
+      const double density    = FE::with_fibre_data(*copy, p).density;
+      const auto yarn_contact = std::make_shared<YarnContactForces>(
+        fabric.contact,
+        make_contact_surface(whole, density, {BoundaryIds::lateral}));
+      p.extra_forces = yarn_contact;
+
+      double yarn_length = 0.;
+      for (unsigned int id = 0; id < patch->n_yarns(); ++id)
+        yarn_length += patch->yarn(id).centreline_length();
+      return std::make_unique<FabricModel>(std::move(copy),
+                                           p,
+                                           yarn_contact,
+                                           yarn_length,
+                                           communicator);
+    }
+  } // namespace Fabric
+} // namespace YarnImpact

@@ -1,0 +1,139 @@
+#!/usr/bin/python3
+"""Checks of Model = fabric runs (fabric_runs.sh) on their history CSVs
+and summaries. Prints one line per check, "ok" or "FAILED", and exits 1
+if one failed.
+
+  energy DIR        the 4 x 4 patch hit at 120 m/s by the cylinder or the
+                    sphere, no failure, a history row at every step, 2.5 us:
+    (1) energy balance: the projectile's lost kinetic energy against the
+        yarns' kinetic, strain and contact energy (projectile and yarn
+        contacts) plus the friction dissipated by both contacts, at every
+        row, within 2 % of the energy lost by the end; the run's own energy
+        error column within 0.3 % of the initial energy;
+    (2) momentum: the projectile's momentum lost, m (v0 - v), against the
+        impulse of the history's contact force, the trapezoidal sum over
+        the steps (velocity Verlet's), within 1e-6 of it;
+    (3) the yarn contact's forces cancel: their net force summed over all
+        steps below 1e-12 of the sum of their magnitudes (summary), and
+        the yarns touched (touching contacts and dissipation positive).
+  single_warp FABRIC FE   1 warp yarn across 5 weft yarns and the same
+                    crimped yarn alone (Model = fe), 0.5 us: until the
+                    struck warp yarn reaches a weft yarn (between 0.5 and
+                    0.6 us) they are the same yarn, made by other code (the
+                    patch's mesh, clamps and fibre directions), hit by the
+                    same projectile with the same step: the projectile's
+                    velocity lost within 1 % and the yarn's kinetic plus
+                    strain energy within 2 % of the FE's from 0.2 us on, and
+                    no yarn contact (no touching contact, no contact energy
+                    or dissipation). What differs: the crimp's phase (round-off)
+                    and the steps, equal to 2e-5, which the chattering
+                    projectile contact amplifies.
+"""
+import csv
+import math
+import re
+import sys
+
+failures = 0
+
+
+def check(ok, text):
+    global failures
+    print(("ok     " if ok else "FAILED ") + text)
+    if not ok:
+        failures += 1
+
+
+def history(directory, name):
+    with open(f"{directory}/history_{name}.csv") as f:
+        rows = list(csv.reader(f))
+    return [[float(x) for x in r] for r in rows[1:]]
+
+
+def yarn_contact_remark(directory):
+    text = open(f"{directory}/summary.txt").read()
+    m = re.search(r"yarn contact: (\d+) touching contacts at the end, (\d+) "
+                  r"candidate lists built; energy (\S+) mJ, dissipated (\S+) "
+                  r"mJ; net force over the sum of \|forces\|, all steps, (\S+)",
+                  text)
+    if not m:
+        check(False, f"{directory}/summary.txt has no yarn contact remark")
+        return None
+    return (int(m.group(1)), int(m.group(2)), float(m.group(3)),
+            float(m.group(4)), float(m.group(5)))
+
+
+# Columns of the history CSV (doc/user-guide.md, "History columns").
+T, STEP, V, F, KY, KP, EL, EC, ED, EW, ERR = 0, 1, 4, 5, 6, 7, 8, 9, 10, 11, 12
+MASS = 9.91e-6  # projectile mass [kg], prm/fabric/km2_patch.prm
+
+
+def energy(directory):
+    rows = history(directory, "fabric")
+    kp0 = rows[0][KP]
+    lost_end = kp0 - rows[-1][KP]
+    worst = max(abs(r[KY] + r[EL] + r[EC] + r[ED] - (kp0 - r[KP]))
+                for r in rows)
+    check(worst <= 0.02 * lost_end,
+          f"energy balance: largest |yarn kinetic + strain + contact + "
+          f"dissipated - projectile energy lost| {worst:.4g} mJ, "
+          f"{100 * worst / lost_end:.3f} % of the {lost_end:.4g} mJ lost "
+          f"(at most 2 %)")
+    err = max(abs(r[ERR]) for r in rows)
+    check(err <= 0.3, f"energy error column: largest {err:.4g} % of the "
+          f"initial energy (at most 0.3 %)")
+    steps = all(b[STEP] == a[STEP] + 1 for a, b in zip(rows, rows[1:]))
+    check(steps, "a history row at every step")
+    impulse = sum(0.5 * (b[T] - a[T]) * 1e-6 * (a[F] + b[F])
+                  for a, b in zip(rows, rows[1:]))
+    momentum = MASS * (rows[0][V] - rows[-1][V])
+    rel = abs(impulse - momentum) / momentum
+    check(rel <= 1e-6, f"momentum: projectile's lost {momentum:.8g} kg m/s, "
+          f"impulse of the contact force {impulse:.8g} N s, relative "
+          f"difference {rel:.2g} (at most 1e-6)")
+    remark = yarn_contact_remark(directory)
+    if remark:
+        touching, builds, e, d, balance = remark
+        check(touching > 0 and d > 0,
+              f"yarn contact engaged: {touching} touching contacts at the "
+              f"end, {d:.4g} mJ dissipated by friction, {e:.4g} mJ stored")
+        check(balance < 1e-12, f"yarn contact forces cancel: net over "
+              f"magnitudes {balance:.3g} (below 1e-12)")
+
+
+def interpolate(rows, col, t):
+    for a, b in zip(rows, rows[1:]):
+        if a[T] <= t <= b[T]:
+            w = (t - a[T]) / (b[T] - a[T])
+            return (1 - w) * a[col] + w * b[col]
+    return rows[-1][col]
+
+
+def single_warp(fabric_dir, fe_dir):
+    fab = history(fabric_dir, "fabric")
+    fe = history(fe_dir, "fe")
+    worst_v = worst_e = 0.
+    for r in fab:
+        if r[T] < 0.2 or r[T] > fe[-1][T]:
+            continue
+        dv_fe = fe[0][V] - interpolate(fe, V, r[T])
+        e_fe = interpolate(fe, KY, r[T]) + interpolate(fe, EL, r[T])
+        worst_v = max(worst_v, abs((fab[0][V] - r[V]) - dv_fe) / dv_fe)
+        worst_e = max(worst_e, abs(r[KY] + r[EL] - e_fe) / e_fe)
+    check(worst_v <= 0.01, f"projectile velocity lost: largest difference "
+          f"{100 * worst_v:.3f} % of the FE yarn's (at most 1 %)")
+    check(worst_e <= 0.02, f"yarn kinetic plus strain energy: largest "
+          f"difference {100 * worst_e:.3f} % of the FE yarn's (at most 2 %)")
+    remark = yarn_contact_remark(fabric_dir)
+    if remark:
+        touching, builds, e, d, balance = remark
+        check(touching == 0 and d == 0 and e == 0,
+              f"no yarn contact: {touching} touching contacts, {e} mJ "
+              f"stored, {d} mJ dissipated")
+
+
+if sys.argv[1] == "energy":
+    energy(sys.argv[2])
+elif sys.argv[1] == "single_warp":
+    single_warp(sys.argv[2], sys.argv[3])
+sys.exit(1 if failures else 0)

@@ -1,0 +1,154 @@
+#!/bin/bash
+# Usage: fabric_runs.sh YARN_IMPACT SOURCE_DIR CASE
+# Runs of Model = fabric (doc/fabric.md) on small patches of the shipped
+# example's yarns (prm/fabric/km2_patch.prm), checked by check_history.py
+# or compared byte for byte. CASE:
+#  energy       4 x 4 yarns, 2.5 us, no failure, a history row every step:
+#               the energy balance, the projectile's momentum against the
+#               impulse of the contact force, the yarn contact's forces
+#               balanced (check_history.py energy says against what); the
+#               displacements of its snapshots symmetric under the half turn
+#               about y (check_symmetry.py).
+#  ranks        4 x 4 yarns, 3.5 us, failure on: the Charmetant law with
+#               sudden and with progressive failure, the linear law with
+#               sudden failure (progressive needs Charmetant): the
+#               history on 2 and 3 ranks byte for byte the one on 1 rank,
+#               cells broken or damaged in each.
+#  restart      the same Charmetant case stopped by SIGTERM at row 25
+#               (2.5 us, the yarns in contact) and continued with
+#               --restart, on 1 and 2 ranks: the history byte for byte the
+#               uninterrupted run's.
+#  single_warp  1 warp yarn across 5 weft yarns against Model = fe with
+#               the same crimped yarn (check_history.py single_warp).
+#  sphere       the energy case struck by a sphere (Projectile/Shape) of
+#               the cylinder's diameter and mass instead: the same checks
+#               (check_history.py energy, check_symmetry.py), on 1 and 2
+#               ranks, the two histories byte for byte the same.
+exe=$1
+src=$2
+case=$3
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+failures=0
+fail() { echo "FAILED $1"; failures=$((failures + 1)); }
+
+# patch DIR WARP WEFT END_TIME HISTORY_INTERVAL [TEXT]: the example's
+# yarns, WARP x WEFT of them, no snapshots.
+patch() {
+  printf 'include %s/prm/fabric/km2_patch.prm\n' "$src"
+  printf 'subsection Fabric\n  set Warp yarns = %s\n  set Weft yarns = %s\nend\n' "$2" "$3"
+  printf 'subsection Time\n  set End time = %s\nend\n' "$4"
+  printf 'subsection Output\n  set Directory = %s\n  set Snapshot interval = 0\n' "$1"
+  printf '  set History interval = %s\n  set Verbosity = quiet\nend\n' "$5"
+  printf '%b' "${6:-}"
+}
+
+# run RANKS ARGS...: sets rc.
+run() {
+  local n=$1
+  shift
+  if [ "$n" -eq 1 ]; then
+    "$exe" "$@" > stdout 2> stderr
+  else
+    mpirun -np "$n" "$exe" "$@" > stdout 2> stderr
+  fi
+  rc=$?
+}
+
+no_failure='subsection Yarn\n  set Failure = false\nend\n'
+linear='subsection FE\n  set Constitutive law = Linear transversely isotropic\nend\n'
+progressive='subsection Yarn\n  set Failure model = progressive\nend\n'
+
+case $case in
+  energy)
+    patch energy 4 4 2.5e-6 1e-9 "$no_failure" > energy.prm
+    sed -i 's/set Snapshot interval = 0$/set Snapshot interval = 0.5e-6/' energy.prm
+    run 1 energy.prm
+    [ "$rc" -eq 0 ] || fail "energy: exit $rc: $(head -c 300 stderr)"
+    /usr/bin/python3 "$here/check_history.py" energy energy || failures=$((failures + 1))
+    /usr/bin/python3 "$here/check_symmetry.py" energy || failures=$((failures + 1))
+    ;;
+  ranks)
+    for law in charmetant progressive linear; do
+      extra=""
+      [ $law = linear ] && extra=$linear
+      [ $law = progressive ] && extra=$progressive
+      for n in 1 2 3; do
+        patch "${law}_$n" 4 4 3.5e-6 0.1e-6 "$extra" > "${law}_$n.prm"
+        run $n "${law}_$n.prm"
+        [ "$rc" -eq 0 ] || fail "$law on $n ranks: exit $rc: $(head -c 300 stderr)"
+      done
+      awk -F, 'NR > 1 && ($15 > 0 || $23 > 0) {found = 1} END {exit !found}' \
+        "${law}_1/history_fabric.csv" ||
+        fail "$law: no failed cell by 3.5 us (the case no longer tests failure across ranks)"
+      for n in 2 3; do
+        if cmp -s "${law}_1/history_fabric.csv" "${law}_$n/history_fabric.csv"; then
+          echo "ok     $law: the history on $n ranks is the one on 1 rank, byte for byte"
+        else
+          fail "$law: the history on $n ranks differs from the one on 1 rank"
+        fi
+      done
+    done
+    ;;
+  restart)
+    for n in 1 2; do
+      patch "ref_$n" 4 4 3.5e-6 0.1e-6 > "ref_$n.prm"
+      run $n "ref_$n.prm"
+      [ "$rc" -eq 0 ] || fail "reference on $n ranks: exit $rc: $(head -c 300 stderr)"
+      patch "cut_$n" 4 4 3.5e-6 0.1e-6 > "cut_$n.prm"
+      YARN_IMPACT_SIGNAL_AT_ROW=25 run $n "cut_$n.prm"
+      if [ "$rc" -ne 6 ] || ! grep -q "the fabric run was stopped by SIGTERM" stderr; then
+        fail "stop on $n ranks: expected exit 6 and the stop line, got $rc: $(head -c 300 stderr)"
+      fi
+      ls "cut_$n" | grep -q '^checkpoint_fabric' || fail "stop on $n ranks: no checkpoint"
+      run $n --restart "cut_$n.prm"
+      [ "$rc" -eq 0 ] || fail "restart on $n ranks: exit $rc: $(head -c 300 stderr)"
+      if cmp -s "ref_$n/history_fabric.csv" "cut_$n/history_fabric.csv"; then
+        echo "ok     restart on $n ranks: the history is the uninterrupted run's, byte for byte"
+      else
+        fail "restart on $n ranks: the history differs from the uninterrupted run's"
+      fi
+    done
+    ;;
+  single_warp)
+    patch fabric 1 5 0.5e-6 0.01e-6 "$no_failure" > fabric.prm
+    run 1 fabric.prm
+    [ "$rc" -eq 0 ] || fail "fabric: exit $rc: $(head -c 300 stderr)"
+    patch fe 1 5 0.5e-6 0.01e-6 "$no_failure" > fe.prm
+    printf 'set Model = fe\nsubsection Yarn\n  set Length = 5e-3\nend\n' >> fe.prm
+    printf 'subsection FE\n  set Cells along the axis = 40\n  subsection Crimp\n' >> fe.prm
+    printf '    set Amplitude = 0.1e-3\n    set Wavelength = 2e-3\n  end\nend\n' >> fe.prm
+    # The fabric's step is shorter (its yarn contact's springs): this
+    # safety factor gives the FE run the fabric's first step, 9.2357 ns,
+    # to 2e-5, so that the two runs differ by their yarns, not their steps.
+    printf 'subsection Time\n  set Safety factor = 0.69821\nend\n' >> fe.prm
+    run 1 fe.prm
+    [ "$rc" -eq 0 ] || fail "fe: exit $rc: $(head -c 300 stderr)"
+    /usr/bin/python3 "$here/check_history.py" single_warp fabric fe || failures=$((failures + 1))
+    ;;
+  sphere)
+    shape='subsection Projectile\n  set Shape = sphere\nend\n'
+    for n in 1 2; do
+      patch "sphere_$n" 4 4 2.5e-6 1e-9 "$no_failure$shape" > "sphere_$n.prm"
+      sed -i 's/set Snapshot interval = 0$/set Snapshot interval = 0.5e-6/' "sphere_$n.prm"
+      run $n "sphere_$n.prm"
+      [ "$rc" -eq 0 ] || fail "sphere on $n ranks: exit $rc: $(head -c 300 stderr)"
+    done
+    /usr/bin/python3 "$here/check_history.py" energy sphere_1 || failures=$((failures + 1))
+    /usr/bin/python3 "$here/check_symmetry.py" sphere_1 || failures=$((failures + 1))
+    if cmp -s sphere_1/history_fabric.csv sphere_2/history_fabric.csv; then
+      echo "ok     sphere: the history on 2 ranks is the one on 1 rank, byte for byte"
+    else
+      fail "sphere: the history on 2 ranks differs from the one on 1 rank"
+    fi
+    ;;
+  *)
+    echo "unknown case $case"
+    exit 2
+    ;;
+esac
+[ $failures -eq 0 ]
