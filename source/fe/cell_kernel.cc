@@ -409,11 +409,19 @@ namespace YarnImpact
               cells.dissipated[c] += cell_energy;
               continue;
             }
-          if (fails && (!std::isfinite(cell_energy) || r.min_J < 0.2))
+          // A fully damaged cell keeps its transverse response while its
+          // broken fibres still fill the section; once they are stretched
+          // to twice its length their ends have parted by a whole cell,
+          // and such a cell only degenerates (its altitude, and with it
+          // the stable step, can fall to nothing: a cell torn at 5000 m/s
+          // reached 2e-17 m).
+          const bool parted = progress && cells.damage[c] >= 1. &&
+                              r.max_elongation > FailureLaw::parted_log_stretch;
+          if (fails && (!std::isfinite(cell_energy) || r.min_J < 0.2 || parted))
             {
               // A cell crushed to less than a fifth of its volume, or
-              // inverted, among the broken ends of a cut yarn: it is eroded,
-              // as explicit impact codes do (such a cell would set a
+              // inverted, or parted, among the broken ends of a cut yarn: it is
+              // eroded, as explicit impact codes do (such a cell would set a
               // vanishing time step); its elastic energy leaves with it
               // (counted as dissipated). Erosion is a numerical removal,
               // counted apart from failure. Without failure the run stops

@@ -21,10 +21,15 @@ namespace YarnImpact
       prm.enter_subsection("Yarn");
       prm.declare_entry(
         "Failure model",
-        "sudden",
+        "progressive",
         Patterns::Selection("sudden|progressive"),
         "How an FE cell fails (the DEM's trusses always break at once at "
-        "the failure strain). sudden: the paper's criterion, a cell whose "
+        "the failure strain). progressive, the default, with its onset, "
+        "spread and fracture energy identified from the DEM, follows the "
+        "DEM's projectile best after the first breaks (doc/validation.md "
+        "section 6); sudden is the paper's criterion "
+        "(prm/km2_120ms_compare.prm, prm/km2_120ms_fe.prm). sudden: a cell "
+        "whose "
         "largest Gauss-point fibre strain passes the failure strain loses "
         "all its stress in one step. progressive: from Damage onset strain "
         "on (grown across the thickness by Damage onset spread), the fibre "
@@ -45,7 +50,7 @@ namespace YarnImpact
         "(doc/identification.md section 8).");
       prm.declare_entry(
         "Damage onset spread",
-        "0",
+        "0.243",
         Patterns::Double(),
         "Progressive failure model: relative growth s of the damage onset "
         "strain across the yarn's thickness [-]. A cell whose shallowest "

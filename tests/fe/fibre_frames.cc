@@ -86,7 +86,8 @@ main(int argc, char **argv)
               "subsection Time\n set End time = 3e-6\nend\n"},
     {"linear law, 1 us",
      common + "subsection FE\n set Constitutive law = Linear transversely "
-              "isotropic\nend\nsubsection Time\n set End time = 1e-6\nend\n"}};
+              "isotropic\nend\nsubsection Time\n set End time = 1e-6\nend\n"
+              "subsection Yarn\n set Failure model = sudden\nend\n"}};
   for (unsigned int k = 0; k < 2; ++k)
     {
       std::printf("%s\n", cases[k][0].c_str());

@@ -36,7 +36,7 @@ namespace YarnImpact
         progressive
       };
       /** The FE failure model. */
-      Model model = Model::sudden;
+      Model model = Model::progressive;
       /** Largest Gauss-point fibre strain of a cell at which its
        * progressive fibre damage starts [-] (the sudden model and the DEM
        * use the failure strain). */
@@ -46,7 +46,7 @@ namespace YarnImpact
        * (1 + spread depth), depth 0 at the face the projectile strikes and
        * 1 at the opposite face (doc/theory.md section 5.4). 0: the same
        * onset in every cell. */
-      double damage_onset_spread = 0.;
+      double damage_onset_spread = 0.243;
       /** Energy dissipated per unit area of a crack across the yarn by the
        * progressive model, G_f [J/m^2]. */
       double fracture_energy = 5.41e4;
@@ -89,7 +89,9 @@ namespace YarnImpact
      *   still pressed by the projectile (doc/fe-model.md section 4).
      *
      * Both erode cells crushed below J = 0.2, inverted or with a
-     * non-finite energy (CellState::eroded).
+     * non-finite energy (CellState::eroded); the progressive law also
+     * erodes a fully damaged cell whose fibre stretch passes 2
+     * (parted_log_stretch).
      */
     struct FailureLaw
     {
@@ -106,6 +108,11 @@ namespace YarnImpact
         progressive
       };
       Kind kind = Kind::none;
+      /** ln 2 [-]: a fully damaged cell (progressive) whose largest
+       * Gauss-point fibre stretch passes 2 is eroded: its broken fibres'
+       * ends have parted by a whole cell and no longer fill the section
+       * (doc/fe-model.md section 4). */
+      static constexpr double parted_log_stretch = 0.69314718055994531;
       /** I_0 = ln(1 + failure strain) [-]; for the progressive law, the
        * onset of the cells at the face that the projectile strikes. */
       double onset_log_stretch = 0.;
