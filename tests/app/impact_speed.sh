@@ -10,8 +10,9 @@ trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
 fail() { echo "FAILED $1"; failures=$((failures + 1)); }
 
-case_prm() { # velocity, directory, extra lines
+case_prm() { # velocity, directory, extra FE lines, extra top-level lines
   printf 'set Symmetry = quarter\nsubsection Projectile\n  set Initial velocity = %s\nend\n' "$1"
+  printf '%s\n' "$4"
   printf 'subsection Time\n  set End time = 2e-6\nend\n'
   printf 'subsection Output\n  set Directory = %s\n  set Snapshot interval = 0\nend\n' "$2"
   printf 'subsection FE\n  set Cells along the axis = 50\n%s\nend\n' "$3"
@@ -41,8 +42,8 @@ for v in 1500 5000; do
 done
 
 # A projectile that would cross a cell in one step, and a units typo.
-refused() { # name, velocity, extra FE lines
-  case_prm "$2" r "$3" > r.prm
+refused() { # name, velocity, extra FE lines, extra top-level lines
+  case_prm "$2" r "$3" "$4" > r.prm
   rm -rf r
   "$exe" r.prm > stdout 2> stderr
   rc=$?
@@ -54,9 +55,13 @@ refused() { # name, velocity, extra FE lines
   fi
 }
 refused "1e8 m/s" 1e8 ""
+# (with the sudden law: the progressive law refuses such a k_e earlier,
+# its softening snapping back, tests/app/bad)
 refused "k_e = 1e30 Pa" 120 "  subsection Charmetant
     set k_e = 1e30
-  end"
+  end" "subsection Yarn
+  set Failure model = sudden
+end"
 # The DEM: a projectile that would jump over spheres is refused the same way.
 printf 'set Model = dem\nset Symmetry = half\nsubsection Yarn\n  set Length = 2e-3\n' > d.prm
 printf '  set Number of fibres = 40\n  set Thickness semi-axis = 0.0182e-3\n' >> d.prm

@@ -60,7 +60,8 @@ run() {
 }
 
 no_failure='subsection Yarn\n  set Failure = false\nend\n'
-linear='subsection FE\n  set Constitutive law = Linear transversely isotropic\nend\n'
+linear='subsection FE\n  set Constitutive law = Linear transversely isotropic\nend\nsubsection Yarn\n  set Failure model = sudden\nend\n'
+sudden='subsection Yarn\n  set Failure model = sudden\nend\n'
 progressive='subsection Yarn\n  set Failure model = progressive\nend\n'
 
 case $case in
@@ -74,7 +75,7 @@ case $case in
     ;;
   ranks)
     for law in charmetant progressive linear; do
-      extra=""
+      extra=$sudden
       [ $law = linear ] && extra=$linear
       [ $law = progressive ] && extra=$progressive
       for n in 1 2 3; do

@@ -110,7 +110,7 @@ namespace YarnImpact
       Kind kind = Kind::none;
       /** ln 2 [-]: a fully damaged cell (progressive) whose largest
        * Gauss-point fibre stretch passes 2 is eroded: its broken fibres'
-       * ends have parted by a whole cell and no longer fill the section
+       * ends have parted by a whole cell and cannot fill the section
        * (doc/fe-model.md section 4). */
       static constexpr double parted_log_stretch = 0.69314718055994531;
       /** I_0 = ln(1 + failure strain) [-]; for the progressive law, the
