@@ -4,12 +4,15 @@
  * refined along the axis, and the wall time of the default case.
  *
  * Usage: bench_fe_throughput [n_steps] [prm file of the default case, or -
- * to skip it] [frames]
+ * to skip it] [frames or -] [sudden or progressive]
  *
  * With `frames` the model gives every Gauss point the fibre frame of e_x
  * (FE::Parameters::fibre_direction): the same numbers through the force
  * loop's path for fibres at any angle, to measure what that path costs
- * against the straight one.
+ * against the straight one. The last argument sets `Yarn/Failure model`
+ * (the default law without it): the progressive law's step evaluates the
+ * fibre damage before the forces, the sudden law's does not, so a
+ * comparison with commits whose default was sudden names it.
  */
 #include <yarn_impact/analysis/run_summary.h>
 #include <yarn_impact/app/application.h>
@@ -38,10 +41,13 @@ main(int argc, char **argv)
   const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
   const unsigned int n_steps = argc > 1 ? std::stoi(argv[1]) : 400;
   const bool frames          = argc > 3 && std::string(argv[3]) == "frames";
-  std::ostream &out          = std::cout;
+  const std::string failure_model = argc > 4 ? argv[4] : "";
+  std::ostream &out               = std::cout;
 
   if (is_root)
-    out << "FE force-loop throughput, Charmetant law, " << n_ranks << " rank(s)"
+    out << "FE force-loop throughput, Charmetant law, "
+        << (failure_model.empty() ? "default" : failure_model)
+        << " failure model, " << n_ranks << " rank(s)"
         << (frames ? ", fibre frames (path for any M)" : "") << "\n"
         << std::setw(10) << "cells" << std::setw(12) << "steps" << std::setw(14)
         << "wall [s]" << std::setw(26) << "cell-steps/s per core"
@@ -53,6 +59,9 @@ main(int argc, char **argv)
       std::ostringstream input;
       input << "set Symmetry = none\nsubsection FE\n set Cells along the axis"
             << " = " << axial << "\nend\n";
+      if (!failure_model.empty())
+        input << "subsection Yarn\n set Failure model = " << failure_model
+              << "\nend\n";
       prm.parse_input_from_string(input.str());
       AllParameters p;
       p.parse_parameters(prm);
