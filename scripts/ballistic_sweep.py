@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Ballistic answers in one command: a velocity sweep of the FE (Charmetant
-and linear laws), the DEM and the hybrid yarn, each model's critical
+and linear laws with the paper's sudden failure, and the Charmetant law with
+the progressive failure identified from the DEM), the DEM and the hybrid yarn, each model's critical
 velocity by bisection, Smith's critical velocity, a CSV and plots
 (doc/ballistics.md).
 
@@ -14,7 +15,9 @@ Usage:
       [--no-bisection] [--plots-only]
 
 Each run is the paper's case (prm/km2_120ms_fe.prm, the linear law of
-prm/study/fe_linear.prm, prm/km2_120ms_dem.prm, and the hybrid yarn with
+prm/study/fe_linear.prm, the progressive law of
+prm/km2_120ms_fe_progressive.prm, model `progressive`, not in the default
+--models, prm/km2_120ms_dem.prm, and the hybrid yarn with
 fibre bars of prm/hybrid/km2_600ms_fibre_bars.prm, model `hybrid`, not in
 the default --models) at another impact velocity,
 without snapshots, stopping 2 us after the yarn is cut through or at 40 us.
@@ -66,10 +69,13 @@ MODELS = {
     "linear": ("fe", "prm/km2_120ms_fe.prm",
                "subsection FE\n  set Constitutive law = Linear transversely "
                "isotropic\nend\n"),
+    "progressive": ("fe", "prm/km2_120ms_fe_progressive.prm", ""),
     "dem": ("dem", "prm/km2_120ms_dem.prm", ""),
     "hybrid": ("hybrid", "prm/hybrid/km2_600ms_fibre_bars.prm", ""),
 }
-LABELS = {"charmetant": "FE, Charmetant law", "linear": "FE, linear TI law",
+LABELS = {"charmetant": "FE, Charmetant law",
+          "progressive": "FE, Charmetant law, progressive failure",
+          "linear": "FE, linear TI law",
           "dem": "DEM", "hybrid": "hybrid, DEM |x| <= 4.89 mm, fibre bars"}
 # The models run on MPI ranks (--np); the FE runs on one.
 PARALLEL_KINDS = ("dem", "hybrid")
@@ -266,8 +272,8 @@ def plot(args, table, critical, smith):
                    "energy_absorbed"),
                   ("first_break", "time of first break [us]", "first_break"),
                   ("cut_through", "time of cut-through [us]", "cut_through")]
-    styles = {"charmetant": "o-", "linear": "s--", "dem": "^-",
-              "hybrid": "v:"}
+    styles = {"charmetant": "o-", "progressive": "D-.", "linear": "s--",
+              "dem": "^-", "hybrid": "v:"}
     for key, label, file in quantities:
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
         for model, rows in table.items():
