@@ -253,6 +253,63 @@ namespace YarnImpact
   } // namespace Analysis
 
 
+  namespace
+  {
+    /** The verification window's Smith quantities of @p s. */
+    void
+    print_window(const RunSummary &s, std::ostream &out)
+    {
+      out << "  window: mean deceleration   " << s.mean_deceleration * 1e-5
+          << " 1e5 m/s^2\n"
+          << "  window: plateau strain      " << s.plateau_strain * 1e2
+          << " %\n"
+          << "  window: longitudinal speed  ";
+      if (s.front_at_clamp_time > 0. && s.longitudinal_speed == 0.)
+        out << "not measured (the front reached the clamp at "
+            << s.front_at_clamp_time * 1e6 << " us)";
+      else
+        out << s.longitudinal_speed << " m/s";
+      if (s.front_at_clamp_time > 0. && s.longitudinal_speed != 0.)
+        out << " (fitted up to " << s.front_at_clamp_time * 1e6
+            << " us, when the front reached the clamp)";
+      out << "\n  window: transverse speed    " << s.transverse_speed
+          << " m/s\n";
+    }
+
+
+    /** The history samples, checks and remarks of @p s. */
+    void
+    print_samples(const RunSummary &s, std::ostream &out)
+    {
+      // The contact force jitters as surface nodes touch and leave the
+      // projectile: the regression format leaves it out.
+      out << "  history samples: t [us], v [m/s], "
+          << (s.regression_format ? "" : "force [N], ")
+          << "max strain [%], energy error [%], transverse front [mm], "
+             "spreading front [mm]\n";
+      for (const auto &r : s.samples)
+        if (!s.regression_format || r.time <= 16e-6 * (1. + 1e-9))
+          {
+            out << "   " << std::setprecision(3) << std::setw(8) << r.time * 1e6
+                << std::setprecision(4) << std::setw(10)
+                << r.projectile_velocity;
+            if (!s.regression_format)
+              out << std::setprecision(3) << std::setw(9) << r.contact_force;
+            out << std::setprecision(4) << std::setw(8)
+                << 100. * r.model.max_strain << std::setw(9)
+                << 100. * r.energy_error << std::setprecision(3) << std::setw(8)
+                << 1e3 * r.fronts.transverse << std::setw(8)
+                << 1e3 * r.fronts.spreading << '\n';
+          }
+      for (const auto &c : (s.regression_format ? s.brief_checks : s.checks))
+        out << "  check " << c << '\n';
+      if (!s.model_remarks.empty())
+        out << "  " << s.model_remarks << '\n';
+      out << std::defaultfloat;
+    }
+  } // namespace
+
+
   void
   print_summary(const RunSummary &s, std::ostream &out)
   {
@@ -269,9 +326,9 @@ namespace YarnImpact
     else
       out << "none\n";
     // Erosion (cells crushed below J = 0.2, inverted or non-finite) is a
-    // numerical removal, not a material failure: its own line, FE only
-    // (the DEM does not erode).
-    if (s.model_name == "fe")
+    // numerical removal, not a material failure: its own line, for the
+    // models with FE cells (the DEM does not erode).
+    if (s.model_name != "dem")
       {
         out << "  eroded cells:               ";
         if (s.first_erosion_time >= 0.)
@@ -285,42 +342,11 @@ namespace YarnImpact
       out << s.cut_through_time * 1e6 << " us\n";
     else
       out << "no\n";
-    out << "  window: mean deceleration   " << s.mean_deceleration * 1e-5
-        << " 1e5 m/s^2\n"
-        << "  window: plateau strain      " << s.plateau_strain * 1e2 << " %\n"
-        << "  window: longitudinal speed  ";
-    if (s.front_at_clamp_time > 0. && s.longitudinal_speed == 0.)
-      out << "not measured (the front reached the clamp at "
-          << s.front_at_clamp_time * 1e6 << " us)";
-    else
-      out << s.longitudinal_speed << " m/s";
-    if (s.front_at_clamp_time > 0. && s.longitudinal_speed != 0.)
-      out << " (fitted up to " << s.front_at_clamp_time * 1e6
-          << " us, when the front reached the clamp)";
-    out << "\n  window: transverse speed    " << s.transverse_speed << " m/s\n";
-    // The contact force jitters as surface nodes touch and leave the
-    // projectile: the regression format leaves it out.
-    out << "  history samples: t [us], v [m/s], "
-        << (s.regression_format ? "" : "force [N], ")
-        << "max strain [%], energy error [%], transverse front [mm], "
-           "spreading front [mm]\n";
-    for (const auto &r : s.samples)
-      if (!s.regression_format || r.time <= 16e-6 * (1. + 1e-9))
-        {
-          out << "   " << std::setprecision(3) << std::setw(8) << r.time * 1e6
-              << std::setprecision(4) << std::setw(10) << r.projectile_velocity;
-          if (!s.regression_format)
-            out << std::setprecision(3) << std::setw(9) << r.contact_force;
-          out << std::setprecision(4) << std::setw(8)
-              << 100. * r.model.max_strain << std::setw(9)
-              << 100. * r.energy_error << std::setprecision(3) << std::setw(8)
-              << 1e3 * r.fronts.transverse << std::setw(8)
-              << 1e3 * r.fronts.spreading << '\n';
-        }
-    for (const auto &c : (s.regression_format ? s.brief_checks : s.checks))
-      out << "  check " << c << '\n';
-    if (!s.model_remarks.empty())
-      out << "  " << s.model_remarks << '\n';
-    out << std::defaultfloat;
+    // The window's Smith quantities are those of one yarn struck
+    // transversely; a woven patch has no such single yarn, so its summary
+    // leaves them out (doc/fabric.md).
+    if (s.model_name != "fabric")
+      print_window(s, out);
+    print_samples(s, out);
   }
 } // namespace YarnImpact
