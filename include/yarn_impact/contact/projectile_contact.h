@@ -8,6 +8,32 @@ namespace YarnImpact
   namespace Contact
   {
     /**
+     * The overlap of a point at the offset (@p ex, @p ey, @p ez) [m] from
+     * the projectile's axis or centre, closer than @p reach [m]: sets the
+     * overlap @p delta [m] and the unit normal @p n along the offset and
+     * returns true, or returns false (nothing set).
+     */
+    inline bool
+    radial_overlap(const double ex,
+                   const double ey,
+                   const double ez,
+                   const double reach,
+                   double &delta,
+                   double *n)
+    {
+      const double r2 = ex * ex + ey * ey + ez * ez;
+      if (r2 >= reach * reach)
+        return false;
+      const double rho = std::sqrt(r2);
+      delta            = reach - rho;
+      n[0]             = ex / rho;
+      n[1]             = ey / rho;
+      n[2]             = ez / rho;
+      return true;
+    }
+
+
+    /**
      * The geometry of a point of the yarn touching the rigid cylindrical
      * projectile (axis along z, at x = 0 and y = @p axis_y [m]), shared by
      * the FE's surface nodes and the DEM's spheres: the point at
@@ -26,16 +52,9 @@ namespace YarnImpact
                        double &delta,
                        double *n)
     {
-      const double ex = x, ey = y - axis_y;
-      const double r2 = ex * ex + ey * ey;
-      if (r2 >= reach * reach)
-        return false;
-      const double rho = std::sqrt(r2);
-      delta            = reach - rho;
-      n[0]             = ex / rho;
-      n[1]             = ey / rho;
-      n[2]             = 0.;
-      return true;
+      // The distance to the axis: the sphere's test on the offset with no
+      // component along the axis (the same bits: ez = 0 adds nothing).
+      return radial_overlap(x, y - axis_y, 0., reach, delta, n);
     }
 
 
@@ -54,16 +73,7 @@ namespace YarnImpact
                    double &delta,
                    double *n)
     {
-      const double ex = x, ey = y - centre_y, ez = z;
-      const double r2 = ex * ex + ey * ey + ez * ez;
-      if (r2 >= reach * reach)
-        return false;
-      const double rho = std::sqrt(r2);
-      delta            = reach - rho;
-      n[0]             = ex / rho;
-      n[1]             = ey / rho;
-      n[2]             = ez / rho;
-      return true;
+      return radial_overlap(x, y - centre_y, z, reach, delta, n);
     }
 
 
