@@ -168,6 +168,13 @@ namespace YarnImpact
                        const unsigned int index,
                        const double time) const override;
 
+        /** The FE part erodes its cells (doc/hybrid.md 3.4). */
+        bool
+        erodes_cells() const override
+        {
+          return true;
+        }
+
         unsigned long
         n_elements() const override
         {
