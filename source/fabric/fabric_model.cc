@@ -236,10 +236,27 @@ namespace YarnImpact
         {
           fe->drift(dt);
         }
+        /** The FE's, with the fabric's own columns (extra_column_names()). */
         Observables
         observables() const override
         {
-          return fe->observables();
+          Observables o   = fe->observables();
+          o.extra_columns = {o.momentum,
+                             1e3 * yarn_contact->energy(),
+                             1e3 * yarn_contact->dissipated()};
+          return o;
+        }
+        /** The yarns' momentum along the impact direction, which with the
+         * projectile's is conserved where no yarn end is clamped
+         * (`Fabric/Clamped edges = none`), and the yarn contact's stored
+         * energy and dissipation (inside the contact and dissipated
+         * energies of the common columns). */
+        std::vector<std::string>
+        extra_column_names() const override
+        {
+          return {"yarn momentum [kg m/s]",
+                  "yarn contact energy [mJ]",
+                  "yarn contact dissipated energy [mJ]"};
         }
         /** The FE's, with the area of one yarn's section: the patch's mass
          * over its density and its yarns' total length. */

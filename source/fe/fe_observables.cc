@@ -157,6 +157,16 @@ namespace YarnImpact
       o.elastic_energy                = symmetry * total[1];
       o.contact_energy                = symmetry * total[2];
       o.dissipated_energy             = symmetry * total[3];
+      {
+        // Along -y, the impact direction; its own sum, which leaves the
+        // energies' sums as they were.
+        ReproducibleSum momentum(1);
+        for (const auto &node : nodes)
+          momentum.add(0,
+                       -lumped_mass.local_element(node[1]) *
+                         velocity.local_element(node[1]));
+        o.momentum = symmetry * momentum.sum(communicator)[0];
+      }
       // The extra forces' energy and dissipation are the whole model's.
       if (parameters.extra_forces)
         {

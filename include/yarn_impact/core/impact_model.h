@@ -178,6 +178,17 @@ namespace YarnImpact
       return std::nullopt;
     }
 
+    /** The names, with their units, of the model's own history columns,
+     * written after the common ones (doc/user-guide.md, "History
+     * columns"), whose values observables() gives in
+     * Observables::extra_columns, in this order and in these units; none
+     * by default. */
+    virtual std::vector<std::string>
+    extra_column_names() const
+    {
+      return {};
+    }
+
     /** Model-specific remarks for the run summary (e.g. how the DEM's MPI
      * ghost layers grew); empty by default. Must be identical on all
      * ranks. */
