@@ -194,11 +194,13 @@ namespace YarnImpact
           const FE::Parameters &fe_parameters,
           std::shared_ptr<const YarnContactForces> yarn_contact,
           const double yarn_length,
+          const std::string &primary,
           const MPI_Comm communicator)
           : shared(std::move(shared_copy))
           , fe(FE::create_model(*shared, fe_parameters, communicator))
           , yarn_contact(std::move(yarn_contact))
           , yarn_length(yarn_length)
+          , primary(primary)
         {}
 
         std::string
@@ -210,6 +212,9 @@ namespace YarnImpact
         setup(const Projectile &projectile, std::ostream &out) override
         {
           fe->setup(projectile, out);
+          out << "[fabric] primary yarns (under the projectile at the "
+                 "start): "
+              << primary << "\n";
         }
         double
         yarn_top() const override
@@ -244,19 +249,30 @@ namespace YarnImpact
           o.extra_columns = {o.momentum,
                              1e3 * yarn_contact->energy(),
                              1e3 * yarn_contact->dissipated()};
+          for (unsigned int g = 0; g < 2; ++g)
+            {
+              o.extra_columns.push_back(1e3 * o.group_kinetic_energy[g]);
+              o.extra_columns.push_back(1e3 * o.group_elastic_energy[g]);
+            }
           return o;
         }
         /** The yarns' momentum along the impact direction, which with the
          * projectile's is conserved where no yarn end is clamped
-         * (`Fabric/Clamped edges = none`), and the yarn contact's stored
+         * (`Fabric/Clamped edges = none`); the yarn contact's stored
          * energy and dissipation (inside the contact and dissipated
-         * energies of the common columns). */
+         * energies of the common columns); the kinetic and strain energies
+         * of the primary yarns (group 0 of primary_yarns()) and of the
+         * secondary ones. */
         std::vector<std::string>
         extra_column_names() const override
         {
           return {"yarn momentum [kg m/s]",
                   "yarn contact energy [mJ]",
-                  "yarn contact dissipated energy [mJ]"};
+                  "yarn contact dissipated energy [mJ]",
+                  "primary yarns kinetic energy [mJ]",
+                  "primary yarns strain energy [mJ]",
+                  "secondary yarns kinetic energy [mJ]",
+                  "secondary yarns strain energy [mJ]"};
         }
         /** The FE's, with the area of one yarn's section: the patch's mass
          * over its density and its yarns' total length. */
@@ -307,7 +323,36 @@ namespace YarnImpact
         const std::unique_ptr<ImpactModel> fe;
         const std::shared_ptr<const YarnContactForces> yarn_contact;
         const double yarn_length;
+        /** The primary yarns' ids, for the set-up report. */
+        const std::string primary;
       };
+
+
+      /**
+       * Whether each yarn of @p patch is primary (true), the projectile's
+       * footprint on the fabric's plane at the start covering part of it,
+       * or secondary: the footprint is the strip |x - x_0| < R of the
+       * cylinder along z, the disc of radius R about (x_0, z_0) of the
+       * sphere and the flat cylinder; a yarn's is the band of its width,
+       * 2 a_z, about its centreline's position.
+       */
+      std::vector<bool>
+      primary_yarns(const WovenPatch &patch,
+                    const YarnImpact::Parameters::Projectile &projectile)
+      {
+        const double reach =
+          0.5 * projectile.diameter + patch.geometry().width_semi_axis;
+        const bool strip =
+          projectile.shape == YarnImpact::Parameters::ProjectileShape::cylinder;
+        std::vector<bool> primary(patch.n_yarns());
+        for (unsigned int id = 0; id < patch.n_yarns(); ++id)
+          primary[id] =
+            patch.is_warp(id)
+              ? strip ||
+                  std::abs(patch.position(id) - projectile.offset_z) < reach
+              : std::abs(patch.position(id) - projectile.offset_x) < reach;
+        return primary;
+      }
     } // namespace
 
 
@@ -357,6 +402,20 @@ namespace YarnImpact
         make_contact_surface(whole, density, {BoundaryIds::lateral}));
       p.extra_forces = yarn_contact;
 
+      // The energies of the primary and the secondary yarns apart.
+      const std::vector<bool> primary =
+        primary_yarns(*patch, shared.projectile);
+      p.energy_group = [primary](const unsigned int id) {
+        return primary[id] ? 0u : 1u;
+      };
+      p.n_energy_groups = 2;
+      std::ostringstream ids;
+      for (unsigned int id = 0; id < patch->n_yarns(); ++id)
+        if (primary[id])
+          ids << (ids.tellp() > 0 ? ", " : "")
+              << (patch->is_warp(id) ? "warp " : "weft ")
+              << (patch->is_warp(id) ? id : id - g.n_warp);
+
       double yarn_length = 0.;
       for (unsigned int id = 0; id < patch->n_yarns(); ++id)
         yarn_length += patch->yarn(id).centreline_length();
@@ -364,6 +423,7 @@ namespace YarnImpact
                                            p,
                                            yarn_contact,
                                            yarn_length,
+                                           ids.str(),
                                            communicator);
     }
   } // namespace Fabric

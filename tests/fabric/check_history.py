@@ -19,7 +19,14 @@ if one failed.
     (4) the yarn contact's own columns: its energy and dissipation within
         the contact and dissipated columns at every row (to their 10
         digits), and
-        at the end the summary's figures (printed to 6 digits).
+        at the end the summary's figures (printed to 6 digits);
+    (5) the primary and the secondary yarns' kinetic and strain energies
+        sum to the yarns' kinetic and strain energy columns at every row,
+        within 1e-9 of them (their 10 digits; the sums are reproducible
+        sums of the same terms) plus 1e-15 mJ, and the primary yarns hold
+        energy at the end (the secondary ones may hold none: under the
+        cylinder along z of the 4 x 4 patch, the secondary weft yarns at
+        x = +-1.5 mm are not touched within 2.5 us).
   momentum DIR conserved|clamped   the 4 x 4 patch of energy with
                     Fabric/Clamped edges = none (conserved) or all
                     (clamped): the total momentum along the impact
@@ -138,6 +145,27 @@ def energy(directory):
               f"and dissipated columns at every row; at the end "
               f"{rows[-1][ce]:.6g} and {rows[-1][cd]:.6g} mJ, the summary's "
               f"{e:.6g} and {d:.6g} mJ")
+    groups(directory, rows)
+
+
+def groups(directory, rows):
+    with open(f"{directory}/history_fabric.csv") as f:
+        header = next(csv.reader(f))
+    pk, pe, sk, se = (header.index(f"{g} yarns {e} energy [mJ]")
+                      for g in ("primary", "secondary")
+                      for e in ("kinetic", "strain"))
+    worst = max(max(abs(r[pk] + r[sk] - r[KY]) / (abs(r[KY]) + 1e-6),
+                    abs(r[pe] + r[se] - r[EL]) / (abs(r[EL]) + 1e-6))
+                for r in rows)
+    ok = all(abs(r[pk] + r[sk] - r[KY]) <= 1e-9 * abs(r[KY]) + 1e-15 and
+             abs(r[pe] + r[se] - r[EL]) <= 1e-9 * abs(r[EL]) + 1e-15
+             for r in rows)
+    last = rows[-1]
+    some = last[pk] + last[pe] > 0
+    check(ok and some, f"primary + secondary yarns: their kinetic and "
+          f"strain energies sum to the yarns' within {worst:.3g} of them (at "
+          f"most 1e-9 plus 1e-15 mJ); at the end primary {last[pk]:.4g} + "
+          f"{last[pe]:.4g} mJ, secondary {last[sk]:.4g} + {last[se]:.4g} mJ")
 
 
 def momentum(directory, mode):

@@ -149,6 +149,11 @@ namespace YarnImpact
      * its nodes of mass times velocity [kg m/s]; 0 where the model does
      * not compute it (the DEM). */
     double momentum = 0.;
+    /** Kinetic and strain energy of each group of cells of a model that
+     * sorts them (the FE model given FE::Parameters::energy_group) [J];
+     * empty otherwise. They sum to kinetic_energy and elastic_energy to
+     * round-off. */
+    std::vector<double> group_kinetic_energy, group_elastic_energy;
     /** The values of the model's own history columns
      * (ImpactModel::extra_column_names()), in their columns' units; empty
      * for a model without any. */

@@ -106,6 +106,14 @@ namespace YarnImpact
         return yarns[id];
       }
 
+      /** The position [m] of yarn @p id across its axis in the fabric's
+       * plane: z_i of warp i, x_j of weft j. */
+      double
+      position(const unsigned int id) const
+      {
+        return offset[id];
+      }
+
       /** The point @p X [m] of the patch in the own frame of yarn @p id
        * [m], where that yarn is a CrimpedYarn centred on z = 0. */
       dealii::Point<3>
