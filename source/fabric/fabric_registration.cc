@@ -75,6 +75,12 @@ namespace YarnImpact
             "(the edges x = +-Weft yarns x Yarn spacing / 2), weft ends "
             "(the edges z = +-Warp yarns x Yarn spacing / 2) or none (a "
             "free patch); the other ends are free.");
+          prm.declare_entry("Cone deflection threshold",
+                            "10e-6",
+                            Double(),
+                            "Deflection along -y above which a point of the "
+                            "yarns' surface is inside the cone, for the "
+                            "history's cone fronts [m].");
           prm.enter_subsection("Yarn contact");
           prm.declare_entry("Penalty",
                             "5e13",
@@ -127,6 +133,8 @@ namespace YarnImpact
           const std::string clamped = prm.get("Clamped edges");
           g.clamp_warp_ends = (clamped == "all" || clamped == "warp ends");
           g.clamp_weft_ends = (clamped == "all" || clamped == "weft ends");
+          fabric.cone_threshold =
+            get_positive_double(prm, "Fabric", "Cone deflection threshold");
           prm.enter_subsection("Yarn contact");
           YarnContactParameters &c = fabric.contact;
           c.penalty =

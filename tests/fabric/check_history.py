@@ -50,6 +50,17 @@ if one failed.
                     the projectile's velocity off the centre differing from
                     the centred impact's by more than 1e-3 m/s (the offset
                     acts).
+  cone DIR          1 warp yarn across 5 weft yarns struck by the cylinder,
+                    no failure, 1.5 us: the history's cone front along the
+                    warp (the farthest reference |x| of a surface node within
+                    half a spacing of z = 0 deflected by more than 10 um)
+                    against its transverse front (the farthest station, by
+                    its nodes' mean current |x|, deflected by more than
+                    10 um: the same front measured by other code) within
+                    0.0625 mm, half a cell, at every row: a station of the
+                    crimped yarn is normal to its tangent, its nodes spread
+                    along x by a_y times the crimp's slope; the front past
+                    0.3 mm by the end.
   single_warp FABRIC FE   1 warp yarn across 5 weft yarns and the same
                     crimped yarn alone (Model = fe), 0.5 us: until the
                     struck warp yarn reaches a weft yarn (between 0.5 and
@@ -205,6 +216,20 @@ def mirror(plus_dir, minus_dir, centre_dir):
           f"centred impact's by up to {dv:.4g} m/s (above 1e-3)")
 
 
+def cone(directory):
+    with open(f"{directory}/history_fabric.csv") as f:
+        header = next(csv.reader(f))
+    cw = header.index("cone front along warp [mm]")
+    tf = header.index("transverse front [mm]")
+    rows = history(directory, "fabric")
+    worst = max(abs(r[cw] - r[tf]) for r in rows)
+    check(worst <= 0.0625 and rows[-1][cw] > 0.3,
+          f"cone front along the warp against the transverse front: largest "
+          f"difference {worst:.4g} mm over {len(rows)} rows (at most 0.0625 "
+          f"mm); at the end {rows[-1][cw]:.4g} and {rows[-1][tf]:.4g} mm "
+          f"(past 0.3 mm)")
+
+
 def interpolate(rows, col, t):
     for a, b in zip(rows, rows[1:]):
         if a[T] <= t <= b[T]:
@@ -242,6 +267,8 @@ elif sys.argv[1] == "momentum":
     momentum(sys.argv[2], sys.argv[3])
 elif sys.argv[1] == "mirror":
     mirror(sys.argv[2], sys.argv[3], sys.argv[4])
+elif sys.argv[1] == "cone":
+    cone(sys.argv[2])
 elif sys.argv[1] == "single_warp":
     single_warp(sys.argv[2], sys.argv[3])
 sys.exit(1 if failures else 0)

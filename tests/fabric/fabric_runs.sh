@@ -9,6 +9,10 @@
 #               balanced (check_history.py energy says against what); the
 #               displacements of its snapshots symmetric under the half turn
 #               about y (check_symmetry.py).
+#  cone         1 warp yarn across 5 weft yarns struck by the cylinder, no
+#               failure, 1.5 us: the cone front along the warp yarn against
+#               the transverse front of the station profile
+#               (check_history.py cone).
 #  edges        4 x 4 yarns, no failure, Fabric/Clamped edges: none (2.5
 #               us, a history row every step) with the checks of energy
 #               (check_history.py energy, check_symmetry.py) and the total
@@ -88,6 +92,12 @@ case $case in
     [ "$rc" -eq 0 ] || fail "energy: exit $rc: $(head -c 300 stderr)"
     /usr/bin/python3 "$here/check_history.py" energy energy || failures=$((failures + 1))
     /usr/bin/python3 "$here/check_symmetry.py" energy || failures=$((failures + 1))
+    ;;
+  cone)
+    patch cone 1 5 1.5e-6 0.05e-6 "$no_failure" > cone.prm
+    run 1 cone.prm
+    [ "$rc" -eq 0 ] || fail "cone: exit $rc: $(head -c 300 stderr)"
+    /usr/bin/python3 "$here/check_history.py" cone cone || failures=$((failures + 1))
     ;;
   edges)
     free='subsection Fabric\n  set Clamped edges = none\nend\n'

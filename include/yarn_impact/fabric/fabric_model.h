@@ -24,6 +24,9 @@ namespace YarnImpact
       /** The contact of crossing yarns (subsection `Fabric/Yarn
        * contact`). */
       YarnContactParameters contact;
+      /** The deflection (along -y) above which a point of the yarns'
+       * surface is inside the cone, for the history's cone fronts [m]. */
+      double cone_threshold = 10e-6;
     };
 
     /**
