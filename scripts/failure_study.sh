@@ -13,7 +13,7 @@ mkdir -p "$out"
 root=$(cd "$(dirname "$0")/.." && pwd)
 
 case_lines() { # name -> the prm lines of that case
-  local v=120 model=progressive fric="" mesh="" spread="" tail=""
+  local v=120 model=progressive fric="" mesh="" spread="" tail="" fibres=""
   case $1 in
     sudden_mu0)     model=sudden; fric=0 ;;
     sudden)         model=sudden ;;
@@ -21,6 +21,9 @@ case_lines() { # name -> the prm lines of that case
     progressive) ;;
     progressive_nospread) spread=0 ;;
     progressive_spread05) spread=0.5 ;;
+    # The FE yarn with the DEM yarn's mass per length and axial stiffness
+    # (FE/Density from fibres, FE/Axial modulus from fibres).
+    progressive_fibres) fibres=1 ;;
     progressive_axial2x) mesh="set Cells along the axis = 200" ;;
     progressive_section2x) mesh="set Section refinements = 1" ;;
     progressive_section4x) mesh="set Section refinements = 2" ;;
@@ -57,12 +60,13 @@ case_lines() { # name -> the prm lines of that case
   echo "subsection FE"
   echo "  $mesh"
   [ -n "$fric" ] && printf '  subsection Contact\n    set Friction coefficient = %s\n  end\n' "$fric"
+  [ -n "$fibres" ] && printf '  set Density from fibres = true\n  set Axial modulus from fibres = true\n'
   echo "end"
 }
 
 cases=("$@")
 [ ${#cases[@]} -eq 0 ] && cases=(sudden_mu0 sudden progressive_mu0 progressive
-  progressive_nospread progressive_spread05 progressive_axial2x progressive_section2x progressive_section4x
+  progressive_nospread progressive_spread05 progressive_fibres progressive_axial2x progressive_section2x progressive_section4x
   sudden_section2x sudden_section4x sudden_200 progressive_200 sudden_300
   progressive_300 tail tail_axial2x tail_section2x tail_200 tail_300)
 for c in "${cases[@]}"; do

@@ -207,6 +207,9 @@ def extract_failure(run, dem_csv):
     if isinstance(q["first_failure_us"], float):
         q["first_failure_vs_dem_us"] = q["first_failure_us"] - t_d[k1]
     q["dv_at_dem_end"] = dvs[-1][1]
+    # Before any fibre breaks: up to the DEM's first break.
+    q["dv_max_before_break"] = max(
+        (d for ti, d in dvs if ti <= t_d[k1] + 1e-9), default=0.0)
     above = [ti for ti, d in dvs if d > 2.0]
     later = [ti for ti, d in dvs if above and ti > above[-1]]
     if later:

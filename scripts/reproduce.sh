@@ -99,7 +99,7 @@ done
 # doc/validation.md section 6: the failure study's cases on the paper's
 # mesh, against the stored DEM histories (scripts/failure_study.sh).
 for c in sudden_mu0 sudden progressive_mu0 progressive progressive_nospread \
-         progressive_spread05 tail sudden_200 progressive_200 tail_200 \
+         progressive_spread05 progressive_fibres tail sudden_200 progressive_200 tail_200 \
          sudden_300 progressive_300 tail_300; do
   v=120; case $c in *_200) v=200 ;; *_300) v=300 ;; esac
   add failure_$c quick "$CODE scripts/failure_study.sh $figs/history_dem_km2_${v}ms.csv" \

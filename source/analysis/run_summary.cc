@@ -327,8 +327,8 @@ namespace YarnImpact
       out << "none\n";
     // Erosion (cells crushed below J = 0.2, inverted or non-finite) is a
     // numerical removal, not a material failure: its own line, for the
-    // models with FE cells (the DEM does not erode).
-    if (s.model_name != "dem")
+    // models with FE cells.
+    if (s.erodes_cells)
       {
         out << "  eroded cells:               ";
         if (s.first_erosion_time >= 0.)
@@ -345,7 +345,7 @@ namespace YarnImpact
     // The window's Smith quantities are those of one yarn struck
     // transversely; a woven patch has no such single yarn, so its summary
     // leaves them out (doc/fabric.md).
-    if (s.model_name != "fabric")
+    if (s.single_yarn)
       print_window(s, out);
     print_samples(s, out);
   }

@@ -275,6 +275,8 @@ namespace YarnImpact
         next_checkpoint = p.output.checkpoint_interval;
       }
     loop.result.model_name      = name;
+    loop.result.erodes_cells    = model->erodes_cells();
+    loop.result.single_yarn     = model->single_yarn();
     loop.result.mass_per_length = model->mass() / p.yarn.length;
     loop.result.axial_stiffness = loop.axial.axial_stiffness();
     loop.t_start                = schedule.time();

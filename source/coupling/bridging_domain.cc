@@ -12,7 +12,17 @@ namespace YarnImpact
     BridgingConstraint::BridgingConstraint(const unsigned int n_nodes)
       : node_mass(n_nodes, 0.)
       , row_start(1, 0)
+      , fixed(3 * std::size_t(n_nodes), 0)
     {}
+
+
+    void
+    BridgingConstraint::fix_component(const unsigned int node,
+                                      const unsigned int d)
+    {
+      fixed.at(3 * std::size_t(node) + d) = 1;
+      factorized                          = false;
+    }
 
 
     void
@@ -55,9 +65,9 @@ namespace YarnImpact
                                    std::to_string(j) +
                                    " has a negative or undefined mass");
       // K = diag(M) + N^T diag(m) N, dense (the coupled nodes are few).
-      factor.assign(std::size_t(n) * n, 0.);
+      std::vector<double> K(std::size_t(n) * n, 0.);
       for (unsigned int j = 0; j < n; ++j)
-        factor[std::size_t(j) * n + j] = node_mass[j];
+        K[std::size_t(j) * n + j] = node_mass[j];
       for (unsigned int i = 0; i < particle_mass.size(); ++i)
         {
           if (!(particle_mass[i] >= 0.))
@@ -86,10 +96,47 @@ namespace YarnImpact
               ", not 1 (the particle is outside the continuum's mesh)");
           for (unsigned int p = row_start[i]; p < row_start[i + 1]; ++p)
             for (unsigned int q = row_start[i]; q < row_start[i + 1]; ++q)
-              factor[std::size_t(column[p]) * n + column[q]] +=
+              K[std::size_t(column[p]) * n + column[q]] +=
                 particle_mass[i] * value[p] * value[q];
         }
-      // In-place Cholesky K = L L^T, L in the lower triangle.
+      // One factor per distinct set of held nodes: K with their rows and
+      // columns replaced by the identity.
+      factors.clear();
+      std::vector<std::vector<std::uint8_t>> held_sets;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          std::vector<std::uint8_t> held(n);
+          for (unsigned int j = 0; j < n; ++j)
+            held[j] = fixed[3 * std::size_t(j) + d];
+          const auto known =
+            std::find(held_sets.begin(), held_sets.end(), held);
+          if (known != held_sets.end())
+            {
+              component_factor[d] = known - held_sets.begin();
+              continue;
+            }
+          component_factor[d] = held_sets.size();
+          held_sets.push_back(held);
+          std::vector<double> factor = K;
+          for (unsigned int j = 0; j < n; ++j)
+            if (held[j])
+              for (unsigned int k = 0; k < n; ++k)
+                {
+                  factor[std::size_t(j) * n + k] = (j == k ? 1. : 0.);
+                  factor[std::size_t(k) * n + j] = (j == k ? 1. : 0.);
+                }
+          cholesky(factor, n);
+          factors.push_back(std::move(factor));
+        }
+      factorized = true;
+    }
+
+
+    void
+    BridgingConstraint::cholesky(std::vector<double> &factor,
+                                 const unsigned int n)
+    {
+      // In place, K = L L^T, L in the lower triangle.
       for (unsigned int j = 0; j < n; ++j)
         {
           double *Lj = &factor[std::size_t(j) * n];
@@ -114,14 +161,18 @@ namespace YarnImpact
           for (unsigned int k = j + 1; k < n; ++k)
             Lj[k] = 0.;
         }
-      factorized = true;
     }
 
 
     void
     BridgingConstraint::solve(double *b, const unsigned int d) const
     {
-      const unsigned int n = node_mass.size();
+      const unsigned int n              = node_mass.size();
+      const std::vector<double> &factor = factors[component_factor[d]];
+      // A held node's right-hand side is zero: its acceleration is.
+      for (unsigned int i = 0; i < n; ++i)
+        if (fixed[3 * std::size_t(i) + d])
+          b[3 * i + d] = 0.;
       // L y = b
       for (unsigned int i = 0; i < n; ++i)
         {
@@ -210,9 +261,13 @@ namespace YarnImpact
     std::size_t
     BridgingConstraint::memory_consumption() const
     {
-      return sizeof(double) * (factor.capacity() + node_mass.capacity() +
+      std::size_t factor_entries = 0;
+      for (const std::vector<double> &factor : factors)
+        factor_entries += factor.capacity();
+      return sizeof(double) * (factor_entries + node_mass.capacity() +
                                particle_mass.capacity() + value.capacity()) +
-             sizeof(unsigned int) * (row_start.capacity() + column.capacity());
+             sizeof(unsigned int) * (row_start.capacity() + column.capacity()) +
+             fixed.capacity();
     }
 
 

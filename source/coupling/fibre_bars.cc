@@ -29,12 +29,16 @@ namespace YarnImpact
                       const std::vector<double> &fibre_y_,
                       const std::vector<double> &fibre_z_,
                       const bool failure_,
+                      const bool z_symmetry,
                       const MPI_Comm communicator_)
     {
-      communicator   = communicator_;
-      fibre_y        = fibre_y_;
-      fibre_z        = fibre_z_;
-      n_fibres       = fibre_y.size();
+      communicator = communicator_;
+      fibre_y      = fibre_y_;
+      fibre_z      = fibre_z_;
+      n_fibres     = fibre_y.size();
+      fibre_weight.resize(n_fibres);
+      for (unsigned int f = 0; f < n_fibres; ++f)
+        fibre_weight[f] = (z_symmetry && fibre_z[f] == 0.) ? 0.5 : 1.;
       n_layers       = layout.fe_cells + 1;
       bars_per_cell  = layout.bars_per_cell;
       n_nodes        = bars_per_cell * layout.fe_cells + 1;
@@ -74,8 +78,8 @@ namespace YarnImpact
         for (unsigned int j = 0; j + 1 < n_nodes; ++j)
           {
             double xi;
-            const double m =
-              0.5 * cell_weight[cell_of(j, xi)] * linear_density * h;
+            const double m = 0.5 * fibre_weight[f] *
+                             cell_weight[cell_of(j, xi)] * linear_density * h;
             mass[index(f, j)] += m;
             mass[index(f, j + 1)] += m;
           }
@@ -126,6 +130,7 @@ namespace YarnImpact
             double k_sum = cell_weight[cell_of(j, xi)];
             if (j > 0)
               k_sum += cell_weight[cell_of(j - 1, xi)];
+            k_sum *= fibre_weight[f];
             rate2 = std::max(rate2, 2. * stiffness * k_sum / mass[index(f, j)]);
           }
       stable_step =
@@ -172,8 +177,9 @@ namespace YarnImpact
     void
     FibreBars::set_up_projection()
     {
-      // G = Psi^T Psi (n_v x n_v) and Psi^T, then P = G^-1 Psi^T by
-      // Cholesky, column by column.
+      // G = Psi^T W Psi (n_v x n_v) and Psi^T W, then P = G^-1 Psi^T W by
+      // Cholesky, column by column; W: the fibres' weights (a half fibre
+      // on z = 0 is half of a mirror pair).
       const unsigned int n = n_vertices;
       std::vector<double> G(std::size_t(n) * n, 0.);
       projection.assign(std::size_t(n) * n_fibres, 0.);
@@ -181,10 +187,11 @@ namespace YarnImpact
         for (unsigned int a = 0; a < 4; ++a)
           {
             const unsigned int va = fibre_vertices[f][a];
-            projection[std::size_t(va) * n_fibres + f] += fibre_values[f][a];
+            const double w_psi    = fibre_weight[f] * fibre_values[f][a];
+            projection[std::size_t(va) * n_fibres + f] += w_psi;
             for (unsigned int b = 0; b < 4; ++b)
               G[std::size_t(va) * n + fibre_vertices[f][b]] +=
-                fibre_values[f][a] * fibre_values[f][b];
+                w_psi * fibre_values[f][b];
           }
       for (unsigned int j = 0; j < n; ++j)
         {
@@ -330,7 +337,7 @@ namespace YarnImpact
                                 bars_per_cell;
               const double t2 = dy * dy + dz * dz;
               // The bar lies in the cell of its first node.
-              const double k_w = cell_weight[c] * stiffness;
+              const double k_w = cell_weight[c] * stiffness * fibre_weight[f];
               // The bars' lengths, kept in q until their tensions replace
               // them below.
               for (unsigned int j = j0; j < j1; ++j)

@@ -51,8 +51,8 @@ namespace YarnImpact
           {
             double xi;
             const double d = strain[index(f, j)] * h;
-            fibre_energy[f] +=
-              0.5 * cell_weight[cell_of(j, xi)] * stiffness * d * d;
+            fibre_energy[f] += 0.5 * fibre_weight[f] *
+                               cell_weight[cell_of(j, xi)] * stiffness * d * d;
           }
       return sum_over_fibres(std::move(fibre_energy));
     }
@@ -158,8 +158,9 @@ namespace YarnImpact
                   layer_strain[(std::size_t(f) * n_layers + k) * 2 + q];
                 if (!std::isnan(e))
                   {
-                    sum += e;
-                    count += 1.;
+                    // A half fibre on z = 0 counts half (1 * e is e).
+                    sum += fibre_weight[f] * e;
+                    count += fibre_weight[f];
                   }
               }
           mean[k] = count > 0. ? sum / count : 0.;

@@ -33,7 +33,7 @@ namespace YarnImpact
                             shared.yarn.thickness_semi_axis,
                             shared.yarn.width_semi_axis,
                             fe_parameters.section_refinements,
-                            false,
+                            quarter(),
                             fe_parameters.preserve_section_area);
         if (layout.fibre_bars)
           {
@@ -45,6 +45,7 @@ namespace YarnImpact
                         *dem.fibre_y,
                         *dem.fibre_z,
                         shared.yarn.failure,
+                        quarter(),
                         communicator);
             bars.compute_forces(*fe_model, communicator);
           }

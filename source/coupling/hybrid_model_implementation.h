@@ -57,10 +57,11 @@ namespace YarnImpact
           fe_shared  = parts.fe_shared;
           fe_model   = FE::create_model(fe_shared, parts.fe, communicator);
           dem_model  = DEM::create_model(dem_shared, parts.dem, communicator);
-          nose.dem_part      = dem_model.get();
-          nose.x_begin       = layout.overlap_begin;
-          nose.station_begin = layout.first_coupled_station;
-          nose.station_end   = layout.dem_trusses + 1;
+          nose.z_symmetry = clamp.z_symmetry = quarter();
+          nose.dem_part                      = dem_model.get();
+          nose.x_begin                       = layout.overlap_begin;
+          nose.station_begin                 = layout.first_coupled_station;
+          nose.station_end                   = layout.dem_trusses + 1;
           if (layout.fibre_bars)
             nose.bars = &bars;
           if (layout.clamp_cells > 0)
@@ -168,6 +169,13 @@ namespace YarnImpact
                        const unsigned int index,
                        const double time) const override;
 
+        /** The FE part erodes its cells (doc/hybrid.md 3.4). */
+        bool
+        erodes_cells() const override
+        {
+          return true;
+        }
+
         unsigned long
         n_elements() const override
         {
@@ -214,11 +222,17 @@ namespace YarnImpact
         {
           std::vector<FibreBreak> breaks = *dem_model->fibre_breaks();
           if (clamp_model)
-            for (FibreBreak b : *clamp_model->fibre_breaks())
-              {
-                b.part = "clamp";
-                breaks.push_back(b);
-              }
+            {
+              // Held here: a range-for over *fibre_breaks() would read the
+              // temporary optional after its end.
+              const std::optional<std::vector<FibreBreak>> at_clamp =
+                clamp_model->fibre_breaks();
+              for (FibreBreak b : *at_clamp)
+                {
+                  b.part = "clamp";
+                  breaks.push_back(b);
+                }
+            }
           if (layout.fibre_bars)
             for (const FibreBreak &b : bars.fibre_breaks(communicator))
               breaks.push_back(b);
@@ -281,6 +295,15 @@ namespace YarnImpact
           if (clamp_model)
             return {&nose, &clamp};
           return {&nose};
+        }
+
+        /** Whether the part modelled is the quarter z >= 0 of the half
+         * x >= 0. */
+        bool
+        quarter() const
+        {
+          return shared.general.symmetry ==
+                 YarnImpact::Parameters::Symmetry::quarter;
         }
 
         double

@@ -251,10 +251,10 @@ namespace YarnImpact
              const DEM::Parameters &dem,
              const HybridParameters &hybrid)
     {
-      require(shared.general.symmetry == YarnImpact::Parameters::Symmetry::half,
+      require(shared.general.symmetry != YarnImpact::Parameters::Symmetry::none,
               "Symmetry",
-              "must be half for Model = hybrid (the coupled overlap is built "
-              "on x >= 0 without the plane z = 0)");
+              "must be half or quarter for Model = hybrid (the DEM part "
+              "and the overlap are built on x >= 0)");
       require(fe.global_refinements == 0,
               "FE/Global refinements",
               "must be 0 for Model = hybrid (the overlap's weights are per "

@@ -50,6 +50,11 @@ namespace YarnImpact
       constraint = BridgingConstraint(n_coupled);
       for (unsigned int c = 0; c < n_coupled; ++c)
         constraint.set_node_mass(c, node_mass[c]);
+      if (z_symmetry)
+        for (unsigned int v = 0; v < n_vertices; ++v)
+          if (std::abs(section.get_vertices()[v][1]) < 1e-9 * semi_axis)
+            for (unsigned int layer = 0; layer < n_layers; ++layer)
+              constraint.fix_component(layer * n_vertices + v, 2);
 
       // The overlap's spheres: fibre f of station s is particle
       // (s - station_begin) n_f + f, tied to the trilinear field at its

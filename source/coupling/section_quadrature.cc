@@ -136,30 +136,68 @@ namespace YarnImpact
                        const FE::Parameters &fe,
                        const DEM::Parameters &dem)
     {
+      // With quarter symmetry the section is its half z >= 0.
+      const bool quarter =
+        shared.general.symmetry == YarnImpact::Parameters::Symmetry::quarter;
       Triangulation<2> section;
       create_yarn_section(section,
                           shared.yarn.thickness_semi_axis,
                           shared.yarn.width_semi_axis,
                           fe.section_refinements,
-                          false,
+                          quarter,
                           fe.preserve_section_area);
-      const DEM::FibreCentres centres = DEM::fibre_centres(shared, dem, false);
+      const DEM::FibreCentres centres =
+        DEM::fibre_centres(shared, dem, quarter);
       const double share = shared.yarn.section_area() / centres.size();
       std::vector<std::array<double, 4>> target(section.n_active_cells(),
                                                 {{0., 0., 0., 0.}});
+      // A fibre on an edge (or a vertex) of the section's cells goes to
+      // each of them in equal parts, so that the quadrature is as
+      // symmetric as the section and the fibres; in a quarter model a fibre
+      // on z = 0 is half a fibre.
+      static const MappingQ1<2> mapping;
+      static const FE_Q<2> shape(1);
       for (unsigned int f = 0; f < centres.size(); ++f)
         {
-          unsigned int c;
-          std::array<unsigned int, 4> vertices;
-          std::array<double, 4> values;
-          locate_in_section(section,
-                            Point<2>(centres.y[f] * (1. + 1e-9),
-                                     centres.z[f] * (1. + 1e-9)),
-                            c,
-                            vertices,
-                            values);
-          for (unsigned int v = 0; v < 4; ++v)
-            target[c][v] += share * values[v];
+          const Point<2> p(centres.y[f] * (1. + 1e-9),
+                           centres.z[f] * (1. + 1e-9));
+          if (quarter && p[1] < 0.)
+            continue;
+          const double weight = (quarter && p[1] == 0.) ? 0.5 : 1.;
+          std::vector<std::pair<unsigned int, std::array<double, 4>>> cells;
+          for (const auto &cell : section.active_cell_iterators())
+            {
+              Point<2> u;
+              try
+                {
+                  u = mapping.transform_real_to_unit_cell(cell, p);
+                }
+              catch (...)
+                {
+                  continue;
+                }
+              if (std::min(u[0], u[1]) < -1e-10 ||
+                  std::max(u[0], u[1]) > 1. + 1e-10)
+                continue;
+              std::array<double, 4> psi;
+              for (unsigned int v = 0; v < 4; ++v)
+                psi[v] = shape.shape_value(v,
+                                           Point<2>(std::clamp(u[0], 0., 1.),
+                                                    std::clamp(u[1], 0., 1.)));
+              cells.emplace_back(cell->active_cell_index(), psi);
+            }
+          if (cells.empty())
+            {
+              // Outside the polygonal section: the nearest cell.
+              unsigned int c;
+              std::array<unsigned int, 4> vertices;
+              std::array<double, 4> psi;
+              locate_in_section(section, p, c, vertices, psi);
+              cells.emplace_back(c, psi);
+            }
+          for (const auto &[c, psi] : cells)
+            for (unsigned int v = 0; v < 4; ++v)
+              target[c][v] += weight / cells.size() * share * psi[v];
         }
       const FE_Q<2> q1(1);
       const QGauss<2> quadrature(2);

@@ -362,6 +362,21 @@ namespace YarnImpact
         {
           return fe->n_elements();
         }
+
+        /** The yarns' FE cells are eroded as a single yarn's. */
+        bool
+        erodes_cells() const override
+        {
+          return true;
+        }
+
+        /** A woven patch: the verification window's Smith quantities,
+         * those of one yarn struck across, do not apply. */
+        bool
+        single_yarn() const override
+        {
+          return false;
+        }
         void
         save_state(Checkpoint::Writer &out) const override
         {

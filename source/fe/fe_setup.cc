@@ -66,6 +66,7 @@ namespace YarnImpact
       else if (is_part())
         create_yarn_part_mesh(tria,
                               yarn,
+                              shared.general.symmetry,
                               parameters.part_begin,
                               part_end(),
                               parameters.layer_weight.size(),

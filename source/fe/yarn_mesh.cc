@@ -121,18 +121,21 @@ namespace YarnImpact
     void
     create_yarn_part_mesh(Triangulation<3, 3> &mesh,
                           const YarnImpact::Parameters::Yarn &yarn,
+                          const YarnImpact::Parameters::Symmetry symmetry,
                           const double x_begin,
                           const double x_end,
                           const unsigned int n_cells,
                           const unsigned int section_refinements,
                           const bool preserve_section_area)
     {
+      const bool quarter =
+        symmetry == YarnImpact::Parameters::Symmetry::quarter;
       Triangulation<2> section;
       create_yarn_section(section,
                           yarn.thickness_semi_axis,
                           yarn.width_semi_axis,
                           section_refinements,
-                          false,
+                          quarter,
                           preserve_section_area);
       const double length = x_end - x_begin;
       Triangulation<3> extruded;
@@ -156,6 +159,8 @@ namespace YarnImpact
               else if (std::abs(c[0] - x_begin) < tol ||
                        std::abs(c[0] - x_end) < tol)
                 face->set_boundary_id(BoundaryIds::coupled_end);
+              else if (quarter && std::abs(c[2]) < 1e-9 * yarn.width_semi_axis)
+                face->set_boundary_id(BoundaryIds::symmetry_z);
               else
                 face->set_boundary_id(BoundaryIds::lateral);
             }

@@ -131,6 +131,13 @@ namespace YarnImpact
       void
       load_state(Checkpoint::Reader &in) override;
 
+      /** Crushed, inverted or non-finite cells are eroded. */
+      bool
+      erodes_cells() const override
+      {
+        return true;
+      }
+
       /** Number of cells of the modelled part. */
       unsigned long
       n_elements() const override

@@ -189,6 +189,24 @@ namespace YarnImpact
       return {};
     }
 
+    /** Whether the model has FE cells that it erodes when they are
+     * crushed, inverted or not finite (Observables::n_eroded); the run
+     * summary then gives them a line of their own. None by default. */
+    virtual bool
+    erodes_cells() const
+    {
+      return false;
+    }
+
+    /** Whether the model is one yarn struck across, the set-up that the
+     * verification window's Smith quantities describe (a woven patch is
+     * not); true by default. */
+    virtual bool
+    single_yarn() const
+    {
+      return true;
+    }
+
     /** Model-specific remarks for the run summary (e.g. how the DEM's MPI
      * ghost layers grew); empty by default. Must be identical on all
      * ranks. */

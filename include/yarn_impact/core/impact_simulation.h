@@ -56,6 +56,10 @@ namespace YarnImpact
   {
     /** The model's name (ImpactModel::name()). */
     std::string model_name;
+    /** ImpactModel::erodes_cells() of the model. */
+    bool erodes_cells = false;
+    /** ImpactModel::single_yarn() of the model. */
+    bool single_yarn = true;
     /** Mass per length of the yarn as discretised [kg/m]. */
     double mass_per_length = 0.;
     /** Axial stiffness EA of the yarn as discretised [N]. */

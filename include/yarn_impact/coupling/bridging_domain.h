@@ -2,6 +2,7 @@
 #define yarn_impact_coupling_bridging_domain_h
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace YarnImpact
@@ -83,6 +84,17 @@ namespace YarnImpact
                    const std::vector<double> &shape_values);
 
       /**
+       * Hold component @p d (0: x, 1: y, 2: z) of coupled node @p node at
+       * zero acceleration, as the continuum holds a node on a symmetry
+       * plane (z on z = 0 with quarter symmetry): that component is solved
+       * with the node's row and column of K replaced by the identity, so
+       * that the other nodes and the particles move as the held node
+       * lets them.
+       */
+      void
+      fix_component(const unsigned int node, const unsigned int d);
+
+      /**
        * Assemble K and factorise it. Throws std::runtime_error naming the
        * cause if a particle's shape values do not sum to one within 1e-12,
        * a mass is negative, or K is not positive definite (a coupled node
@@ -159,9 +171,19 @@ namespace YarnImpact
       std::vector<unsigned int> row_start;
       std::vector<unsigned int> column;
       std::vector<double> value;
-      /** Lower Cholesky factor of K, dense, row-major n x n. */
-      std::vector<double> factor;
-      bool factorized = false;
+      /** Whether component d of node J is held: entry 3 J + d. */
+      std::vector<std::uint8_t> fixed;
+      /** Lower Cholesky factors of K, dense, row-major n x n: one per
+       * distinct set of held nodes among the components, and the factor
+       * each component uses. */
+      std::vector<std::vector<double>> factors;
+      unsigned int component_factor[3] = {0, 0, 0};
+      bool factorized                  = false;
+
+      /** Cholesky factorisation of the n x n matrix @p factor in place;
+       * throws naming the node if it is not positive definite. */
+      static void
+      cholesky(std::vector<double> &factor, const unsigned int n);
 
       /** Solve K x = b in place for one component (stride 3, offset d). */
       void

@@ -73,7 +73,9 @@ namespace YarnImpact
        * @p section, node layers as in @p layout from the overlap's first),
        * layout.bars_per_cell per cell, for the fibres at (@p fibre_y,
        * @p fibre_z) [m] of the section (collective). @p failure: whether
-       * bars break at @p yarn.failure_strain.
+       * bars break at @p yarn.failure_strain. @p z_symmetry: the section
+       * is the half z >= 0 of a quarter model, whose fibres on z = 0 are
+       * half fibres (half the mass and stiffness, as in the DEM).
        */
       void
       set_up(ImpactModel &fe_model,
@@ -83,6 +85,7 @@ namespace YarnImpact
              const std::vector<double> &fibre_y,
              const std::vector<double> &fibre_z,
              const bool failure,
+             const bool z_symmetry,
              const MPI_Comm communicator);
 
       /** v += dt f / m on the own fibres' bar nodes but the clamped one
@@ -283,6 +286,9 @@ namespace YarnImpact
       std::vector<double> break_time;
       /** Time of the displacements: the sum of the drifts' steps [s]. */
       double time = 0.;
+      /** Each fibre's share of a whole fibre: 1/2 on the plane z = 0 of a
+       * quarter model, 1 elsewhere [-]. */
+      std::vector<double> fibre_weight;
       /** Bar length h_b [m], stiffness E_f A_f / h_b [N/m], failure strain
        * [-] and whether bars break. */
       double h = 0., stiffness = 0., failure_strain = 0.;

@@ -33,6 +33,10 @@ namespace YarnImpact
       /** The DEM part's stations it ties: [station_begin, station_end). */
       unsigned int station_begin = 0, station_end = 0;
 
+      /** With quarter symmetry: the FE nodes on the plane z = 0 are held
+       * in z, and so are they in the constraint. */
+      bool z_symmetry = false;
+
       BridgingConstraint constraint;
       /** Coupled FE nodes owned here: coupled index and local dofs. */
       std::vector<std::pair<unsigned int, std::array<unsigned int, 3>>>

@@ -76,7 +76,8 @@ namespace YarnImpact
                              const Fabric::CrimpedYarn &crimped);
 
     /**
-     * A part of the yarn (half symmetry): the section extruded along x over
+     * A part of the yarn (half or quarter symmetry, @p symmetry): the
+     * section (its half z >= 0 with quarter symmetry) extruded along x over
      * [@p x_begin, @p x_end] [m] in @p n_cells equal layers; the face
      * x = x_begin, and x = x_end unless it is the clamp L/2, have the
      * boundary id BoundaryIds::coupled_end, the others as in
@@ -85,6 +86,7 @@ namespace YarnImpact
     void
     create_yarn_part_mesh(dealii::Triangulation<3, 3> &mesh,
                           const YarnImpact::Parameters::Yarn &yarn,
+                          const YarnImpact::Parameters::Symmetry symmetry,
                           const double x_begin,
                           const double x_end,
                           const unsigned int n_cells,

@@ -1,0 +1,89 @@
+#!/bin/bash
+# Usage: quarter_symmetry.sh YARN_IMPACT SOURCE_DIR
+# The hybrid yarn with quarter symmetry (x >= 0, z >= 0) against the same
+# yarn with half symmetry, whose fibres and mesh are symmetric about z = 0
+# (a consistency check against an independent run, no recorded numbers):
+# - the fibres: the 393 sites of a hexagonal lattice of spacing d inside
+#   the paper's ellipse, a layout symmetric about z = 0 with fibres on the
+#   plane (half fibres in the quarter model);
+# - the ready case (prm/hybrid/km2_120ms_hybrid.prm) with a 3 mm DEM part
+#   over 0.6 us, the longitudinal wave through the overlap and into the FE
+#   part, with each far field (continuum and fibre bars);
+# - the histories of the whole yarn agree: the projectile's velocity and
+#   force, the energies and the largest strain within 1e-5 (the two models
+#   sum their forces in different orders), the
+#   failed elements equal (relative to each quantity's largest value
+#   over the run).
+exe=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+failures=0
+fail() {
+  echo "FAILED $*"
+  failures=$((failures + 1))
+}
+
+/usr/bin/python3 - << 'END'
+import math
+d, ay, az = 12e-6, 0.0575e-3, 0.267e-3
+h = d * math.sqrt(3) / 2
+with open("fibres.txt", "w") as out:
+    for i in range(-10, 11):
+        for j in range(-40, 41):
+            y, z = i * h, (j + 0.5 * (i % 2)) * d
+            if (y / ay) ** 2 + (z / az) ** 2 <= 1:
+                out.write(f"{y:.15e} {z:.15e}\n")
+END
+n=$(wc -l < fibres.txt)
+
+# case SYMMETRY FAR_FIELD DIR
+case_prm() {
+  cat "$src/prm/hybrid/km2_120ms_hybrid.prm"
+  printf 'set Symmetry = %s\n' "$1"
+  printf 'subsection Yarn\n  set Number of fibres = %s\nend\n' "$n"
+  printf 'subsection DEM\n  set Fibre layout = file\n  set Fibre file = %s\nend\n' "$work/fibres.txt"
+  printf 'subsection Hybrid\n  set DEM half-length = 3e-3\n  set Far field = %s\nend\n' "$2"
+  printf 'subsection Time\n  set End time = 0.6e-6\nend\n'
+  printf 'subsection Output\n  set Directory = %s\n  set Snapshot interval = 0\n' "$3"
+  printf '  set History interval = 0.05e-6\nend\n'
+}
+
+for far in continuum "fibre bars"; do
+  tag=${far// /_}
+  for sym in half quarter; do
+    case_prm "$sym" "$far" "${sym}_$tag" > "${sym}_$tag.prm"
+    "$exe" "${sym}_$tag.prm" > "${sym}_$tag.stdout" 2>&1 ||
+      { fail "$sym, $far: exit $?"; tail -5 "${sym}_$tag.stdout"; }
+  done
+  /usr/bin/python3 - "half_$tag/history_hybrid.csv" "quarter_$tag/history_hybrid.csv" "$far" << 'END' ||
+import csv, sys
+a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:3])
+columns = ["projectile velocity [m/s]", "contact force [N]",
+           "yarn kinetic energy [mJ]", "elastic energy [mJ]",
+           "contact energy [mJ]", "dissipated energy [mJ]",
+           "max longitudinal strain [-]"]
+ok = len(a) == len(b) == 13
+worst = (0., "", "")
+for c in columns:
+    # Relative to the column's largest value over the run.
+    scale = max(abs(float(x[c])) for x in a)
+    for x, y in zip(a, b):
+        d = abs(float(x[c]) - float(y[c])) / scale if scale > 0. else 0.
+        if d > worst[0]:
+            worst = (d, c, x["t [us]"])
+for x, y in zip(a, b):
+    ok = ok and x["failed elements"] == y["failed elements"]
+print(f"{sys.argv[3]}: quarter against half, largest relative difference "
+      f"{worst[0]:.2e} ({worst[1]} at {worst[2]} us), {len(a)} rows")
+sys.exit(0 if ok and worst[0] <= 1e-5 else 1)
+END
+    fail "$far: the quarter model's history differs from the half model's"
+done
+
+if [ $failures -ne 0 ]; then
+  echo "$failures check(s) failed"
+  exit 1
+fi
+echo "hybrid: quarter = half for both far fields: all passed"
