@@ -217,7 +217,8 @@ namespace YarnImpact
           require(shared.projectile.diameter < p.n_weft * p.spacing,
                   "Projectile/Diameter",
                   wide_projectile.str());
-          // The sphere must also stay inside the weft yarns' span.
+          // The sphere and the flat cylinder must also stay inside the
+          // weft yarns' span.
           std::ostringstream wide_sphere;
           wide_sphere << "= " << shared.projectile.diameter * 1e3
                       << " mm must be less than the patch's extent along z "
