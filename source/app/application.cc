@@ -103,15 +103,31 @@ namespace YarnImpact
                             task->parameter,
                             "asks for the " + task->description + " of the " +
                               name + " model: it needs Model = " + name);
-    // The sphere's contact is the FE's (FE::ProjectileContact), given the
-    // node's z; only the fabric's runs are tested with it.
+    // The sphere's and the flat cylinder's contact is the FE's
+    // (FE::ProjectileContact), given the node's z, and so is a contact off
+    // x = z = 0; only the fabric's runs are tested with them.
+    const auto shape = shared.projectile.shape;
     for (const std::string &name : run_models())
-      Parameters::require(shared.projectile.shape ==
-                              Parameters::ProjectileShape::cylinder ||
-                            name == "fabric",
-                          "Projectile/Shape",
-                          "= sphere runs with Model = fabric only, not " +
-                            name);
+      {
+        Parameters::require(shape == Parameters::ProjectileShape::cylinder ||
+                              name == "fabric",
+                            "Projectile/Shape",
+                            std::string("= ") +
+                              (shape == Parameters::ProjectileShape::sphere
+                                 ? "sphere"
+                                 : "flat cylinder") +
+                              " runs with Model = fabric only, not " + name);
+        Parameters::require(shared.projectile.offset_x == 0. ||
+                              name == "fabric",
+                            "Projectile/Impact offset x",
+                            "must be 0 with Model = " + name +
+                              ": only Model = fabric strikes off x = 0");
+        Parameters::require(shared.projectile.offset_z == 0. ||
+                              name == "fabric",
+                            "Projectile/Impact offset z",
+                            "must be 0 with Model = " + name +
+                              ": only Model = fabric strikes off z = 0");
+      }
     // Every set-up check that needs no MPI ranks is made here, so that
     // `--check` refuses what the run would, and a run refuses before it
     // writes anything (with Model = both, before the FE part runs).

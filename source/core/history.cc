@@ -37,7 +37,8 @@ namespace YarnImpact
   void
   History::open(const std::string &directory,
                 const std::string &model_name,
-                const bool is_root)
+                const bool is_root,
+                const std::vector<std::string> &extra_columns)
   {
     if (!is_root)
       return;
@@ -46,24 +47,28 @@ namespace YarnImpact
     const auto names = column_names();
     for (unsigned int i = 0; i < names.size(); ++i)
       header << (i > 0 ? "," : "") << names[i];
+    for (const auto &name : extra_columns)
+      header << ',' << name;
     header << '\n';
     file.append(header.str());
   }
 
   History::History(const std::string &directory,
                    const std::string &model_name,
-                   const bool is_root)
+                   const bool is_root,
+                   const std::vector<std::string> &extra_columns)
   {
-    open(directory, model_name, is_root);
+    open(directory, model_name, is_root, extra_columns);
   }
 
   History::History(const std::string &directory,
                    const std::string &model_name,
                    const bool is_root,
-                   std::vector<HistoryRow> rows)
+                   std::vector<HistoryRow> rows,
+                   const std::vector<std::string> &extra_columns)
     : all_rows(std::move(rows))
   {
-    open(directory, model_name, is_root);
+    open(directory, model_name, is_root, extra_columns);
     if (!file.is_open())
       return;
     std::string text;
@@ -98,6 +103,8 @@ namespace YarnImpact
         out.put(m.n_eroded);
         out.put(m.n_damaged);
         out.put(m.cut_through);
+        out.put(m.momentum);
+        out.put(m.extra_columns);
         out.put(r.fronts);
       }
   }
@@ -131,6 +138,8 @@ namespace YarnImpact
         in.get(m.n_eroded);
         in.get(m.n_damaged);
         in.get(m.cut_through);
+        in.get(m.momentum);
+        in.get(m.extra_columns);
         in.get(r.fronts);
         rows.push_back(std::move(r));
       }
@@ -162,7 +171,13 @@ namespace YarnImpact
          << ',' << r.fronts.spreading * 1e3 << ','
          << r.fronts.width_at_impact * 1e3 << ',' << r.fronts.plateau_strain
          << ',' << r.fronts.rms_width_at_impact * 1e3 << ',' << m.n_eroded
-         << ',' << m.n_damaged << '\n';
+         << ',' << m.n_damaged;
+    // The model's own columns with every digit of a double, so that
+    // balances among them (a momentum's) can be checked to round-off.
+    line << std::setprecision(17);
+    for (const double value : m.extra_columns)
+      line << ',' << value;
+    line << '\n';
     return line.str();
   }
 } // namespace YarnImpact

@@ -184,7 +184,10 @@ namespace YarnImpact
       checkpoint_info = Checkpoint::read(dir, name, communicator, saved_state);
     if (checkpoint_info.generation == 0)
       collective_output(communicator, [&] {
-        history = std::make_unique<History>(dir, name, is_root);
+        history = std::make_unique<History>(dir,
+                                            name,
+                                            is_root,
+                                            model->extra_column_names());
       });
 
     Schedule &schedule = loop.schedule;

@@ -79,7 +79,8 @@ namespace YarnImpact
       history = std::make_unique<History>(parameters.output.directory,
                                           model->name(),
                                           is_root,
-                                          std::move(rows));
+                                          std::move(rows),
+                                          model->extra_column_names());
     });
     if (!snapshots.empty())
       write_pvd();

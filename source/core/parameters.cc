@@ -162,10 +162,24 @@ namespace YarnImpact
       prm.declare_entry(
         "Shape",
         "cylinder",
-        Patterns::Selection("cylinder|sphere"),
+        Patterns::Selection("cylinder|sphere|flat cylinder"),
         "cylinder: its axis along z, across the yarn (the paper); sphere: "
-        "centred on x = z = 0 above the impact point (Model = fabric "
-        "only).");
+        "centred above the impact point; flat cylinder: a right circular "
+        "cylinder of the Diameter, its axis along y, striking with its "
+        "flat face, the fragment simulant (sphere and flat cylinder: Model "
+        "= fabric only).");
+      prm.declare_entry("Impact offset x",
+                        "0",
+                        Patterns::Double(),
+                        "x of the impact point: of the cylinder's axis, the "
+                        "sphere's centre, the flat cylinder's axis (Model = "
+                        "fabric only where not 0) [m].");
+      prm.declare_entry("Impact offset z",
+                        "0",
+                        Patterns::Double(),
+                        "z of the impact point: of the sphere's centre or "
+                        "the flat cylinder's axis (Model = fabric only "
+                        "where not 0; the cylinder along z has none) [m].");
       prm.leave_subsection();
     }
 
@@ -180,8 +194,12 @@ namespace YarnImpact
       motion =
         (prm.get("Motion") == "free" ? ProjectileMotion::free
                                      : ProjectileMotion::prescribed_velocity);
-      shape = (prm.get("Shape") == "sphere" ? ProjectileShape::sphere
-                                            : ProjectileShape::cylinder);
+      const std::string s = prm.get("Shape");
+      shape               = (s == "sphere"          ? ProjectileShape::sphere
+                             : s == "flat cylinder" ? ProjectileShape::flat_cylinder
+                                                    : ProjectileShape::cylinder);
+      offset_x            = prm.get_double("Impact offset x");
+      offset_z            = prm.get_double("Impact offset z");
       prm.leave_subsection();
     }
 

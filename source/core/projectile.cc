@@ -11,7 +11,9 @@ namespace YarnImpact
     , v(-parameters.initial_velocity)
     , is_prescribed(parameters.motion ==
                     Parameters::ProjectileMotion::prescribed_velocity)
-    , is_sphere(parameters.shape == Parameters::ProjectileShape::sphere)
+    , shape_(parameters.shape)
+    , x0(parameters.offset_x)
+    , z0(parameters.offset_z)
   {}
 
   void

@@ -74,6 +74,9 @@ namespace YarnImpact
           // Throws if some surface node is owned by no rank.
           contact.emplace(parameters, surface, owned, communicator);
           this->communicator = communicator;
+          for (const unsigned int n : owned)
+            for (unsigned int d = 0; d < 3; ++d)
+              node_reference.push_back(surface.reference[n][d]);
           return nodes;
         }
 
@@ -86,6 +89,7 @@ namespace YarnImpact
           // force holds only these forces (FE model): their sums over
           // the steps, for the check that they balance (remarks()).
           contact->add_forces(x, v, dt, force);
+          positions = x;
           for (unsigned int i = 0; i < force.size(); ++i)
             {
               net[i % 3] += force[i];
@@ -120,6 +124,45 @@ namespace YarnImpact
             << " mJ; net force over the sum of |forces|, all steps, "
             << balance;
           return s.str();
+        }
+
+        /**
+         * The cone's (transverse) fronts [m] at the positions of the last
+         * add_forces(): the largest reference distance from the impact
+         * point (@p x0, @p z0) [m] of a surface node deflected along -y by
+         * more than @p threshold [m], among the nodes within @p band [m]
+         * of the line through the impact point along x (the warp yarns'
+         * direction), along z (the weft yarns') and along the diagonals
+         * x = +-z; 0 where none. Collective.
+         */
+        std::array<double, 3>
+        cone_fronts(const double x0,
+                    const double z0,
+                    const double threshold,
+                    const double band) const
+        {
+          std::array<double, 3> front = {{0., 0., 0.}};
+          for (unsigned int k = 0; 3 * k < positions.size(); ++k)
+            {
+              const double *X = &node_reference[3 * k];
+              if (X[1] - positions[3 * k + 1] <= threshold)
+                continue;
+              const double dx = X[0] - x0, dz = X[2] - z0;
+              if (std::abs(dz) < band)
+                front[0] = std::max(front[0], std::abs(dx));
+              if (std::abs(dx) < band)
+                front[1] = std::max(front[1], std::abs(dz));
+              if (std::min(std::abs(dx - dz), std::abs(dx + dz)) <
+                  std::sqrt(2.) * band)
+                front[2] = std::max(front[2], std::hypot(dx, dz));
+            }
+          MPI_Allreduce(MPI_IN_PLACE,
+                        front.data(),
+                        3,
+                        MPI_DOUBLE,
+                        MPI_MAX,
+                        communicator);
+          return front;
         }
 
         double
@@ -174,6 +217,10 @@ namespace YarnImpact
         const ContactSurface surface;
         std::optional<YarnContact> contact;
         MPI_Comm communicator = MPI_COMM_SELF;
+        /** The reference positions [m] of this rank's nodes, 3 each, in
+         * the order of add_forces(), and their positions [m] at the last
+         * add_forces(). */
+        std::vector<double> node_reference, positions;
         /** Sums over the steps of this rank's yarn-contact forces [N] and
          * of their components' magnitudes [N]. */
         double net[3] = {0., 0., 0.}, magnitude = 0.;
@@ -194,11 +241,17 @@ namespace YarnImpact
           const FE::Parameters &fe_parameters,
           std::shared_ptr<const YarnContactForces> yarn_contact,
           const double yarn_length,
+          const std::string &primary,
+          const double cone_threshold,
+          const double spacing,
           const MPI_Comm communicator)
           : shared(std::move(shared_copy))
           , fe(FE::create_model(*shared, fe_parameters, communicator))
           , yarn_contact(std::move(yarn_contact))
           , yarn_length(yarn_length)
+          , primary(primary)
+          , cone_threshold(cone_threshold)
+          , spacing(spacing)
         {}
 
         std::string
@@ -210,6 +263,9 @@ namespace YarnImpact
         setup(const Projectile &projectile, std::ostream &out) override
         {
           fe->setup(projectile, out);
+          out << "[fabric] primary yarns (under the projectile at the "
+                 "start): "
+              << primary << "\n";
         }
         double
         yarn_top() const override
@@ -236,10 +292,49 @@ namespace YarnImpact
         {
           fe->drift(dt);
         }
+        /** The FE's, with the fabric's own columns (extra_column_names()). */
         Observables
         observables() const override
         {
-          return fe->observables();
+          Observables o   = fe->observables();
+          o.extra_columns = {o.momentum,
+                             1e3 * yarn_contact->energy(),
+                             1e3 * yarn_contact->dissipated()};
+          for (unsigned int g = 0; g < 2; ++g)
+            {
+              o.extra_columns.push_back(1e3 * o.group_kinetic_energy[g]);
+              o.extra_columns.push_back(1e3 * o.group_elastic_energy[g]);
+            }
+          for (const double f :
+               yarn_contact->cone_fronts(shared->projectile.offset_x,
+                                         shared->projectile.offset_z,
+                                         cone_threshold,
+                                         0.5 * spacing))
+            o.extra_columns.push_back(1e3 * f);
+          return o;
+        }
+        /** The yarns' momentum along the impact direction, which with the
+         * projectile's is conserved where no yarn end is clamped
+         * (`Fabric/Clamped edges = none`); the yarn contact's stored
+         * energy and dissipation (inside the contact and dissipated
+         * energies of the common columns); the kinetic and strain energies
+         * of the primary yarns (group 0 of primary_yarns()) and of the
+         * secondary ones; the cone's fronts along x, z and the diagonals
+         * (YarnContactForces::cone_fronts(), within half a spacing of
+         * each line through the impact point). */
+        std::vector<std::string>
+        extra_column_names() const override
+        {
+          return {"yarn momentum [kg m/s]",
+                  "yarn contact energy [mJ]",
+                  "yarn contact dissipated energy [mJ]",
+                  "primary yarns kinetic energy [mJ]",
+                  "primary yarns strain energy [mJ]",
+                  "secondary yarns kinetic energy [mJ]",
+                  "secondary yarns strain energy [mJ]",
+                  "cone front along warp [mm]",
+                  "cone front along weft [mm]",
+                  "cone front along diagonal [mm]"};
         }
         /** The FE's, with the area of one yarn's section: the patch's mass
          * over its density and its yarns' total length. */
@@ -305,7 +400,38 @@ namespace YarnImpact
         const std::unique_ptr<ImpactModel> fe;
         const std::shared_ptr<const YarnContactForces> yarn_contact;
         const double yarn_length;
+        /** The primary yarns' ids, for the set-up report. */
+        const std::string primary;
+        /** Fabric/Cone deflection threshold [m], Fabric/Yarn spacing [m]. */
+        const double cone_threshold, spacing;
       };
+
+
+      /**
+       * Whether each yarn of @p patch is primary (true), the projectile's
+       * footprint on the fabric's plane at the start covering part of it,
+       * or secondary: the footprint is the strip |x - x_0| < R of the
+       * cylinder along z, the disc of radius R about (x_0, z_0) of the
+       * sphere and the flat cylinder; a yarn's is the band of its width,
+       * 2 a_z, about its centreline's position.
+       */
+      std::vector<bool>
+      primary_yarns(const WovenPatch &patch,
+                    const YarnImpact::Parameters::Projectile &projectile)
+      {
+        const double reach =
+          0.5 * projectile.diameter + patch.geometry().width_semi_axis;
+        const bool strip =
+          projectile.shape == YarnImpact::Parameters::ProjectileShape::cylinder;
+        std::vector<bool> primary(patch.n_yarns());
+        for (unsigned int id = 0; id < patch.n_yarns(); ++id)
+          primary[id] =
+            patch.is_warp(id)
+              ? strip ||
+                  std::abs(patch.position(id) - projectile.offset_z) < reach
+              : std::abs(patch.position(id) - projectile.offset_x) < reach;
+        return primary;
+      }
     } // namespace
 
 
@@ -355,6 +481,20 @@ namespace YarnImpact
         make_contact_surface(whole, density, {BoundaryIds::lateral}));
       p.extra_forces = yarn_contact;
 
+      // The energies of the primary and the secondary yarns apart.
+      const std::vector<bool> primary =
+        primary_yarns(*patch, shared.projectile);
+      p.energy_group = [primary](const unsigned int id) {
+        return primary[id] ? 0u : 1u;
+      };
+      p.n_energy_groups = 2;
+      std::ostringstream ids;
+      for (unsigned int id = 0; id < patch->n_yarns(); ++id)
+        if (primary[id])
+          ids << (ids.tellp() > 0 ? ", " : "")
+              << (patch->is_warp(id) ? "warp " : "weft ")
+              << (patch->is_warp(id) ? id : id - g.n_warp);
+
       double yarn_length = 0.;
       for (unsigned int id = 0; id < patch->n_yarns(); ++id)
         yarn_length += patch->yarn(id).centreline_length();
@@ -362,6 +502,9 @@ namespace YarnImpact
                                            p,
                                            yarn_contact,
                                            yarn_length,
+                                           ids.str(),
+                                           fabric.cone_threshold,
+                                           g.spacing,
                                            communicator);
     }
   } // namespace Fabric

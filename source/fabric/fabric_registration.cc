@@ -67,6 +67,20 @@ namespace YarnImpact
                             "8",
                             Integer(),
                             "Cells along each yarn per Yarn spacing [-].");
+          prm.declare_entry(
+            "Clamped edges",
+            "all",
+            dealii::Patterns::Selection("all|warp ends|weft ends|none"),
+            "Which yarn ends are clamped: all (the four edges), warp ends "
+            "(the edges x = +-Weft yarns x Yarn spacing / 2), weft ends "
+            "(the edges z = +-Warp yarns x Yarn spacing / 2) or none (a "
+            "free patch); the other ends are free.");
+          prm.declare_entry("Cone deflection threshold",
+                            "10e-6",
+                            Double(),
+                            "Deflection along -y above which a point of the "
+                            "yarns' surface is inside the cone, for the "
+                            "history's cone fronts [m].");
           prm.enter_subsection("Yarn contact");
           prm.declare_entry("Penalty",
                             "5e13",
@@ -116,6 +130,11 @@ namespace YarnImpact
           g.amplitude = get_positive_double(prm, "Fabric", "Crimp amplitude");
           g.cells_per_spacing =
             get_positive_integer(prm, "Fabric", "Cells per spacing");
+          const std::string clamped = prm.get("Clamped edges");
+          g.clamp_warp_ends = (clamped == "all" || clamped == "warp ends");
+          g.clamp_weft_ends = (clamped == "all" || clamped == "weft ends");
+          fabric.cone_threshold =
+            get_positive_double(prm, "Fabric", "Cone deflection threshold");
           prm.enter_subsection("Yarn contact");
           YarnContactParameters &c = fabric.contact;
           c.penalty =
@@ -171,7 +190,7 @@ namespace YarnImpact
           require(radius > p.thickness_semi_axis,
                   "Fabric/Crimp amplitude",
                   fold.str());
-          // The fabric is the whole patch, its four edges clamped.
+          // The fabric is the whole patch.
           require(shared.general.symmetry ==
                     YarnImpact::Parameters::Symmetry::none,
                   "Symmetry",
@@ -186,30 +205,61 @@ namespace YarnImpact
                   "must be 0 with Model = fabric: refine along the yarns "
                   "with Fabric/Cells per spacing, across with "
                   "FE/Section refinements");
-          // The cylinder spans the patch along z; along x it must leave
-          // the clamped ends of the warp yarns free.
+          // The cylinder spans the patch along z; along x it must stay
+          // inside the warp yarns' span.
           std::ostringstream wide_projectile;
           wide_projectile
             << "= " << shared.projectile.diameter * 1e3
             << " mm must be less than the patch's extent across the "
                "projectile's axis (Fabric/Weft yarns x Fabric/Yarn spacing) "
             << p.n_weft * p.spacing * 1e3
-            << " mm, or the projectile reaches the clamped edges";
+            << " mm, or the projectile reaches the patch's edges";
           require(shared.projectile.diameter < p.n_weft * p.spacing,
                   "Projectile/Diameter",
                   wide_projectile.str());
-          // The sphere must also leave the weft yarns' ends free.
+          // The sphere and the flat cylinder must also stay inside the
+          // weft yarns' span.
           std::ostringstream wide_sphere;
           wide_sphere << "= " << shared.projectile.diameter * 1e3
                       << " mm must be less than the patch's extent along z "
                          "(Fabric/Warp yarns x Fabric/Yarn spacing) "
-                      << p.n_warp * p.spacing * 1e3
-                      << " mm for a sphere, or it reaches the clamped edges";
-          require(shared.projectile.shape ==
-                      YarnImpact::Parameters::ProjectileShape::cylinder ||
-                    shared.projectile.diameter < p.n_warp * p.spacing,
+                      << p.n_warp * p.spacing * 1e3 << " mm for a "
+                      << shape_name(shared)
+                      << ", or it reaches the patch's edges";
+          const bool along_z =
+            shared.projectile.shape ==
+            YarnImpact::Parameters::ProjectileShape::cylinder;
+          require(along_z || shared.projectile.diameter < p.n_warp * p.spacing,
                   "Projectile/Diameter",
                   wide_sphere.str());
+          // Off the centre, the projectile must still stay inside.
+          const double R  = 0.5 * shared.projectile.diameter;
+          const double x0 = shared.projectile.offset_x,
+                       z0 = shared.projectile.offset_z;
+          std::ostringstream off_x;
+          off_x << "= " << x0 * 1e3
+                << " mm puts the projectile's edge at |x| = "
+                << (std::abs(x0) + R) * 1e3
+                << " mm, beyond the patch's edge at Fabric/Weft yarns x "
+                   "Fabric/Yarn spacing / 2 = "
+                << 0.5e3 * p.n_weft * p.spacing << " mm";
+          require(std::abs(x0) + R < 0.5 * p.n_weft * p.spacing,
+                  "Projectile/Impact offset x",
+                  off_x.str());
+          require(!along_z || z0 == 0.,
+                  "Projectile/Impact offset z",
+                  "must be 0 with Projectile/Shape = cylinder: its axis is "
+                  "along z");
+          std::ostringstream off_z;
+          off_z << "= " << z0 * 1e3
+                << " mm puts the projectile's edge at |z| = "
+                << (std::abs(z0) + R) * 1e3
+                << " mm, beyond the patch's edge at Fabric/Warp yarns x "
+                   "Fabric/Yarn spacing / 2 = "
+                << 0.5e3 * p.n_warp * p.spacing << " mm";
+          require(along_z || std::abs(z0) + R < 0.5 * p.n_warp * p.spacing,
+                  "Projectile/Impact offset z",
+                  off_z.str());
           FE::validate(with_patch(shared), fe_of_patch());
         }
 
@@ -240,6 +290,16 @@ namespace YarnImpact
         }
 
       private:
+        /** The name of @p shared's projectile's shape, for messages. */
+        static const char *
+        shape_name(const YarnImpact::Parameters::Shared &shared)
+        {
+          return shared.projectile.shape ==
+                     YarnImpact::Parameters::ProjectileShape::sphere
+                   ? "sphere"
+                   : "flat cylinder";
+        }
+
         /** The patch of these parameters, with the section of @p shared. */
         WovenPatchGeometry
         patch(const YarnImpact::Parameters::Shared &shared) const

@@ -157,10 +157,14 @@ namespace YarnImpact
               const double s =
                 yarns[id].abscissa_of(to_yarn_frame(id, face->center()));
               const double tol = 1e-6 * g.spacing / g.cells_per_spacing;
-              face->set_boundary_id(std::abs(s - y.x_begin) < tol ||
-                                        std::abs(s - y.x_end) < tol
-                                      ? BoundaryIds::end
-                                      : BoundaryIds::lateral);
+              const bool clamped =
+                is_warp(id) ? g.clamp_warp_ends : g.clamp_weft_ends;
+              if (std::abs(s - y.x_begin) >= tol &&
+                  std::abs(s - y.x_end) >= tol)
+                face->set_boundary_id(BoundaryIds::lateral);
+              else
+                face->set_boundary_id(clamped ? BoundaryIds::end
+                                              : free_end_boundary_id);
             }
     }
   } // namespace Fabric

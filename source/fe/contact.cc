@@ -74,10 +74,12 @@ namespace YarnImpact
       const double dt)
     {
       // A surface node touches within the projectile's radius.
-      const double R    = projectile.radius();
-      const double yc   = projectile.axis_position();
-      const double vp   = projectile.velocity();
-      const bool sphere = projectile.sphere();
+      const double R   = projectile.radius();
+      const double yc  = projectile.axis_position();
+      const double vp  = projectile.velocity();
+      const auto shape = projectile.shape();
+      const double x0  = projectile.offset_x();
+      const double z0  = projectile.offset_z();
       // The law is chosen once per call; the loop over the nodes is
       // instantiated for each law.
       Contact::with_contact_law(parameters.law, [&](auto tag) {
@@ -86,25 +88,34 @@ namespace YarnImpact
         for (unsigned int k = 0; k < nodes.size(); ++k)
           {
             const auto &node = nodes[k];
-            const double px  = reference_coordinate[node[0]] +
-                              displacement.local_element(node[0]);
+            // From the impact point (x0 = 0 changes no bit).
+            const double px = reference_coordinate[node[0]] +
+                              displacement.local_element(node[0]) - x0;
             const double py = reference_coordinate[node[1]] +
                               displacement.local_element(node[1]);
             double delta, n[3];
             reaction[k]      = 0.;
             stored_energy[k] = 0.;
-            // The sphere (Model = fabric) also sees the node's z.
-            const bool touches =
-              sphere
-                ? Contact::sphere_overlap(px,
-                                          py,
-                                          reference_coordinate[node[2]] +
-                                            displacement.local_element(node[2]),
-                                          yc,
-                                          R,
-                                          delta,
-                                          n)
-                : Contact::projectile_overlap(px, py, yc, R, delta, n);
+            // The sphere and the flat cylinder (Model = fabric) also see
+            // the node's z.
+            bool touches;
+            if (shape == YarnImpact::Parameters::ProjectileShape::cylinder)
+              touches = Contact::projectile_overlap(px, py, yc, R, delta, n);
+            else
+              {
+                const double pz = reference_coordinate[node[2]] +
+                                  displacement.local_element(node[2]) - z0;
+                touches =
+                  shape == YarnImpact::Parameters::ProjectileShape::sphere
+                    ? Contact::sphere_overlap(px, py, pz, yc, R, delta, n)
+                    : Contact::flat_cylinder_overlap(px,
+                                                     py,
+                                                     pz,
+                                                     yc - R,
+                                                     R,
+                                                     delta,
+                                                     n);
+              }
             if (!touches)
               {
                 if constexpr (history_size > 0)

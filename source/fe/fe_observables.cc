@@ -157,6 +157,37 @@ namespace YarnImpact
       o.elastic_energy                = symmetry * total[1];
       o.contact_energy                = symmetry * total[2];
       o.dissipated_energy             = symmetry * total[3];
+      {
+        // Along -y, the impact direction; its own sum, which leaves the
+        // energies' sums as they were.
+        ReproducibleSum momentum(1);
+        for (const auto &node : nodes)
+          momentum.add(0,
+                       -lumped_mass.local_element(node[1]) *
+                         velocity.local_element(node[1]));
+        o.momentum = symmetry * momentum.sum(communicator)[0];
+      }
+      if (parameters.n_energy_groups > 0)
+        {
+          // The terms of sums 0 and 1, by group.
+          const unsigned int n_groups = parameters.n_energy_groups;
+          ReproducibleSum groups(2 * n_groups);
+          for (unsigned int k = 0; k < nodes.size(); ++k)
+            for (const unsigned int i : nodes[k])
+              groups.add(node_group[k],
+                         0.5 * lumped_mass.local_element(i) *
+                           velocity.local_element(i) *
+                           velocity.local_element(i));
+          for (const unsigned int c : owned_cells)
+            if (cells.failed[c] == CellState::active)
+              groups.add(n_groups + cell_group[c], cells.energy[c]);
+          const std::vector<double> g = groups.sum(communicator);
+          for (unsigned int i = 0; i < n_groups; ++i)
+            {
+              o.group_kinetic_energy.push_back(symmetry * g[i]);
+              o.group_elastic_energy.push_back(symmetry * g[n_groups + i]);
+            }
+        }
       // The extra forces' energy and dissipation are the whole model's.
       if (parameters.extra_forces)
         {

@@ -162,6 +162,8 @@ namespace YarnImpact
         {
           if (cell->is_locally_owned())
             owned_cells.push_back(cell_index.size());
+          if (parameters.energy_group)
+            cell_group.push_back(parameters.energy_group(cell->material_id()));
           fe_values.reinit(typename Triangulation<3>::cell_iterator(cell));
           cell_index.push_back(cell->active_cell_index());
           // The continuum weight of the cell's layer (a hybrid's part).
@@ -411,6 +413,8 @@ namespace YarnImpact
                cells.dofs[c * n_cell_dofs + 3 * a + 1],
                cells.dofs[c * n_cell_dofs + 3 * a + 2]}};
             nodes.push_back(node);
+            if (!cell_group.empty())
+              node_group.push_back(cell_group[c]);
             // Along the yarn: the abscissa of the node's section, whose
             // end sections are clamped.
             const double x = reference_abscissa[node[0]];

@@ -345,6 +345,9 @@ namespace YarnImpact
       std::vector<unsigned char> cell_axis;
       std::vector<unsigned int> cell_layer;
       std::vector<double> cell_volume;
+      /** The energy group of each cell and of each owned node
+       * (Parameters::energy_group); empty without groups. */
+      std::vector<unsigned int> cell_group, node_group;
       /** The failure law of the force loop (make_failure_law() of
        * Yarn/Failure, Failure strain and the FE's FailureParameters). */
       FailureLaw failure_law;

@@ -15,7 +15,52 @@ if one failed.
         the steps (velocity Verlet's), within 1e-6 of it;
     (3) the yarn contact's forces cancel: their net force summed over all
         steps below 1e-12 of the sum of their magnitudes (summary), and
-        the yarns touched (touching contacts and dissipation positive).
+        the yarns touched (touching contacts and dissipation positive);
+    (4) the yarn contact's own columns: its energy and dissipation within
+        the contact and dissipated columns at every row (to their 10
+        digits), and
+        at the end the summary's figures (printed to 6 digits);
+    (5) the primary and the secondary yarns' kinetic and strain energies
+        sum to the yarns' kinetic and strain energy columns at every row,
+        within 1e-9 of them (their 10 digits; the sums are reproducible
+        sums of the same terms) plus 1e-15 mJ, and the primary yarns hold
+        energy at the end (the secondary ones may hold none: under the
+        cylinder along z of the 4 x 4 patch, the secondary weft yarns at
+        x = +-1.5 mm are not touched within 2.5 us).
+  momentum DIR conserved|clamped   the 4 x 4 patch of energy with
+                    Fabric/Clamped edges = none (conserved) or all
+                    (clamped): the total momentum along the impact
+                    direction, the projectile's m v plus the history's
+                    yarn momentum, against the projectile's initial m v0 at
+                    every row. Free: nothing outside the projectile and the
+                    yarns acts on them, and the velocity Verlet steps
+                    conserve it to round-off (the contact force and the
+                    yarns' internal forces are applied equal and opposite
+                    in the same kicks): within 1e-9 of m v0 (the CSV's
+                    projectile velocity has 10 digits). Clamped: the clamps'
+                    reactions change it by more than 1e-3 of m v0 once the
+                    waves reach them, which shows the check can fail.
+  mirror PLUS MINUS CENTRE   the 4 x 4 patch struck by the flat cylinder
+                    at (x, z) = (0.25, 0.125) mm, at its image under the half
+                    turn about y, (-0.25, -0.125) mm, which maps the patch and
+                    its clamps onto themselves, and at the centre, 2.5 us:
+                    every column of PLUS and MINUS the same at every row,
+                    within 1e-9 of the column's largest magnitude (the
+                    displacements' asymmetry of check_symmetry.py is 1e-13);
+                    the projectile's velocity off the centre differing from
+                    the centred impact's by more than 1e-3 m/s (the offset
+                    acts).
+  cone DIR          1 warp yarn across 5 weft yarns struck by the cylinder,
+                    no failure, 1.5 us: the history's cone front along the
+                    warp (the farthest reference |x| of a surface node within
+                    half a spacing of z = 0 deflected by more than 10 um)
+                    against its transverse front (the farthest station, by
+                    its nodes' mean current |x|, deflected by more than
+                    10 um: the same front measured by other code) within
+                    0.0625 mm, half a cell, at every row: a station of the
+                    crimped yarn is normal to its tangent, its nodes spread
+                    along x by a_y times the crimp's slope; the front past
+                    0.3 mm by the end.
   single_warp FABRIC FE   1 warp yarn across 5 weft yarns and the same
                     crimped yarn alone (Model = fe), 0.5 us: until the
                     struck warp yarn reaches a weft yarn (between 0.5 and
@@ -99,6 +144,90 @@ def energy(directory):
               f"end, {d:.4g} mJ dissipated by friction, {e:.4g} mJ stored")
         check(balance < 1e-12, f"yarn contact forces cancel: net over "
               f"magnitudes {balance:.3g} (below 1e-12)")
+        with open(f"{directory}/history_fabric.csv") as f:
+            header = next(csv.reader(f))
+        ce = header.index("yarn contact energy [mJ]")
+        cd = header.index("yarn contact dissipated energy [mJ]")
+        inside = all(0 <= r[ce] <= r[EC] * (1 + 1e-9) + 1e-12 and
+                     0 <= r[cd] <= r[ED] * (1 + 1e-9) + 1e-12 for r in rows)
+        end = abs(rows[-1][ce] - e) <= 1e-5 * max(e, 1e-12) and \
+            abs(rows[-1][cd] - d) <= 1e-5 * d
+        check(inside and end, f"yarn contact columns: within the contact "
+              f"and dissipated columns at every row; at the end "
+              f"{rows[-1][ce]:.6g} and {rows[-1][cd]:.6g} mJ, the summary's "
+              f"{e:.6g} and {d:.6g} mJ")
+    groups(directory, rows)
+
+
+def groups(directory, rows):
+    with open(f"{directory}/history_fabric.csv") as f:
+        header = next(csv.reader(f))
+    pk, pe, sk, se = (header.index(f"{g} yarns {e} energy [mJ]")
+                      for g in ("primary", "secondary")
+                      for e in ("kinetic", "strain"))
+    worst = max(max(abs(r[pk] + r[sk] - r[KY]) / (abs(r[KY]) + 1e-6),
+                    abs(r[pe] + r[se] - r[EL]) / (abs(r[EL]) + 1e-6))
+                for r in rows)
+    ok = all(abs(r[pk] + r[sk] - r[KY]) <= 1e-9 * abs(r[KY]) + 1e-15 and
+             abs(r[pe] + r[se] - r[EL]) <= 1e-9 * abs(r[EL]) + 1e-15
+             for r in rows)
+    last = rows[-1]
+    some = last[pk] + last[pe] > 0
+    check(ok and some, f"primary + secondary yarns: their kinetic and "
+          f"strain energies sum to the yarns' within {worst:.3g} of them (at "
+          f"most 1e-9 plus 1e-15 mJ); at the end primary {last[pk]:.4g} + "
+          f"{last[pe]:.4g} mJ, secondary {last[sk]:.4g} + {last[se]:.4g} mJ")
+
+
+def momentum(directory, mode):
+    with open(f"{directory}/history_fabric.csv") as f:
+        header = next(csv.reader(f))
+    col = header.index("yarn momentum [kg m/s]")
+    rows = history(directory, "fabric")
+    p0 = MASS * rows[0][V]
+    worst = max(abs(MASS * r[V] + r[col] - p0) for r in rows) / p0
+    if mode == "conserved":
+        check(worst <= 1e-9, f"momentum of a free patch: largest |m v + yarn "
+              f"momentum - m v0| {worst:.3g} of m v0 = {p0:.8g} kg m/s over "
+              f"{len(rows)} rows (at most 1e-9)")
+    else:
+        check(worst > 1e-3, f"momentum of a clamped patch: largest |m v + "
+              f"yarn momentum - m v0| {worst:.3g} of m v0 (the clamps' "
+              f"reactions: above 1e-3)")
+
+
+def mirror(plus_dir, minus_dir, centre_dir):
+    plus = history(plus_dir, "fabric")
+    minus = history(minus_dir, "fabric")
+    centre = history(centre_dir, "fabric")
+    same = len(plus) == len(minus)
+    worst = 0.
+    for c in range(len(plus[0])):
+        scale = max(abs(r[c]) for r in plus)
+        if scale > 0.:
+            worst = max(worst, max(abs(a[c] - b[c]) for a, b in
+                                   zip(plus, minus)) / scale)
+    check(same and worst <= 1e-9, f"mirror: the impacts at (0.25, 0.125) and "
+          f"(-0.25, -0.125) mm, {len(plus)} and {len(minus)} rows, largest "
+          f"difference {worst:.3g} of a column's largest magnitude (at most "
+          f"1e-9)")
+    dv = max(abs(a[V] - b[V]) for a, b in zip(plus, centre))
+    check(dv > 1e-3, f"offset: the projectile's velocity differs from the "
+          f"centred impact's by up to {dv:.4g} m/s (above 1e-3)")
+
+
+def cone(directory):
+    with open(f"{directory}/history_fabric.csv") as f:
+        header = next(csv.reader(f))
+    cw = header.index("cone front along warp [mm]")
+    tf = header.index("transverse front [mm]")
+    rows = history(directory, "fabric")
+    worst = max(abs(r[cw] - r[tf]) for r in rows)
+    check(worst <= 0.0625 and rows[-1][cw] > 0.3,
+          f"cone front along the warp against the transverse front: largest "
+          f"difference {worst:.4g} mm over {len(rows)} rows (at most 0.0625 "
+          f"mm); at the end {rows[-1][cw]:.4g} and {rows[-1][tf]:.4g} mm "
+          f"(past 0.3 mm)")
 
 
 def interpolate(rows, col, t):
@@ -134,6 +263,12 @@ def single_warp(fabric_dir, fe_dir):
 
 if sys.argv[1] == "energy":
     energy(sys.argv[2])
+elif sys.argv[1] == "momentum":
+    momentum(sys.argv[2], sys.argv[3])
+elif sys.argv[1] == "mirror":
+    mirror(sys.argv[2], sys.argv[3], sys.argv[4])
+elif sys.argv[1] == "cone":
+    cone(sys.argv[2])
 elif sys.argv[1] == "single_warp":
     single_warp(sys.argv[2], sys.argv[3])
 sys.exit(1 if failures else 0)

@@ -65,28 +65,33 @@ def image(nodes, key, X):
     return None
 
 
-failures = 0
-files = sorted(glob.glob(f"{sys.argv[1]}/fe_*.vtu"))[1:]
-if not files:
-    print(f"FAILED no snapshot in {sys.argv[1]}")
-    sys.exit(1)
-for f in files:
-    nodes = read(f)
-    largest = max(max(abs(c) for c in u) for X, u in nodes.values())
-    worst, missing = 0., 0
-    for key, (X, u) in nodes.items():
-        c = image(nodes, key, X)
-        if c is None:
-            missing += 1
-            continue
-        v = c[1]
-        worst = max(worst, abs(u[0] + v[0]), abs(u[1] - v[1]),
-                    abs(u[2] + v[2]))
-    ok = missing == 0 and worst <= 1e-6 * largest + 1e-12
-    failures += not ok
-    print(("ok     " if ok else "FAILED ") +
-          f"half-turn symmetry, {f.split('/')[-1]}: {len(nodes)} vertices, "
-          f"{missing} without an image; largest asymmetry {worst:.3g} m, "
-          f"{worst / largest:.2g} of the largest displacement {largest:.4g} "
-          f"m (at most 1e-6 of it plus 1e-12 m)")
-sys.exit(1 if failures else 0)
+def main():
+    failures = 0
+    files = sorted(glob.glob(f"{sys.argv[1]}/fe_*.vtu"))[1:]
+    if not files:
+        print(f"FAILED no snapshot in {sys.argv[1]}")
+        sys.exit(1)
+    for f in files:
+        nodes = read(f)
+        largest = max(max(abs(c) for c in u) for X, u in nodes.values())
+        worst, missing = 0., 0
+        for key, (X, u) in nodes.items():
+            c = image(nodes, key, X)
+            if c is None:
+                missing += 1
+                continue
+            v = c[1]
+            worst = max(worst, abs(u[0] + v[0]), abs(u[1] - v[1]),
+                        abs(u[2] + v[2]))
+        ok = missing == 0 and worst <= 1e-6 * largest + 1e-12
+        failures += not ok
+        print(("ok     " if ok else "FAILED ") +
+              f"half-turn symmetry, {f.split('/')[-1]}: {len(nodes)} vertices, "
+              f"{missing} without an image; largest asymmetry {worst:.3g} m, "
+              f"{worst / largest:.2g} of the largest displacement {largest:.4g} "
+              f"m (at most 1e-6 of it plus 1e-12 m)")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()

@@ -77,6 +77,47 @@ namespace YarnImpact
     }
 
 
+    /**
+     * projectile_overlap() for the rigid flat-faced cylinder, its axis
+     * along y through x = z = 0, its flat face at y = @p face_y [m] and
+     * its body above it: the point at (@p x, @p y, @p z) [m] touches when
+     * it is inside, above the face and closer to the axis than @p radius
+     * [m]. The face and the rim are penalised apart, the edge between them
+     * sharp: the overlap is the smaller of the depth above the face,
+     * pushed out along -y, and the depth inside the rim, pushed out
+     * radially, the shorter way out of the body.
+     */
+    inline bool
+    flat_cylinder_overlap(const double x,
+                          const double y,
+                          const double z,
+                          const double face_y,
+                          const double radius,
+                          double &delta,
+                          double *n)
+    {
+      const double r2 = x * x + z * z;
+      if (y <= face_y || r2 >= radius * radius)
+        return false;
+      const double rho = std::sqrt(r2), face = y - face_y, rim = radius - rho;
+      if (face <= rim)
+        {
+          delta = face;
+          n[0]  = 0.;
+          n[1]  = -1.;
+          n[2]  = 0.;
+        }
+      else
+        {
+          delta = rim;
+          n[0]  = x / rho;
+          n[1]  = 0.;
+          n[2]  = z / rho;
+        }
+      return true;
+    }
+
+
     /** The velocity @p v_rel [m/s] of a point moving at @p v [m/s]
      * relative to the projectile moving at @p projectile_velocity [m/s]
      * along y. */

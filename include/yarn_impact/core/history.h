@@ -49,19 +49,23 @@ namespace YarnImpact
   {
   public:
     /** Open `<directory>/history_<model_name>.csv` on rank 0 and write the
-     * header (an OutputError if it cannot). */
+     * header (an OutputError if it cannot): the common column_names(), then
+     * @p extra_columns, the model's own (ImpactModel::extra_column_names()),
+     * whose values each row's Observables::extra_columns holds. */
     History(const std::string &directory,
             const std::string &model_name,
-            const bool is_root);
+            const bool is_root,
+            const std::vector<std::string> &extra_columns = {});
 
     /** Open the history of a restarted run:
      * `<directory>/history_<model_name>.csv` written anew on rank 0 with the
      * header and the rows @p rows of the checkpoint, as the uninterrupted run
-     * had written them. */
+     * had written them; @p extra_columns as in the other constructor. */
     History(const std::string &directory,
             const std::string &model_name,
             const bool is_root,
-            std::vector<HistoryRow> rows);
+            std::vector<HistoryRow> rows,
+            const std::vector<std::string> &extra_columns = {});
 
     /** Append a row, written at once and whole (a crashed run keeps what it
      * had; a failed write throws an OutputError and leaves the file ending
@@ -96,7 +100,8 @@ namespace YarnImpact
     void
     open(const std::string &directory,
          const std::string &model_name,
-         const bool is_root);
+         const bool is_root,
+         const std::vector<std::string> &extra_columns);
 
     AppendFile file;
     std::vector<HistoryRow> all_rows;

@@ -178,6 +178,17 @@ namespace YarnImpact
       return std::nullopt;
     }
 
+    /** The names, with their units, of the model's own history columns,
+     * written after the common ones (doc/user-guide.md, "History
+     * columns"), whose values observables() gives in
+     * Observables::extra_columns, in this order and in these units; none
+     * by default. */
+    virtual std::vector<std::string>
+    extra_column_names() const
+    {
+      return {};
+    }
+
     /** Whether the model has FE cells that it erodes when they are
      * crushed, inverted or not finite (Observables::n_eroded); the run
      * summary then gives them a line of their own. None by default. */

@@ -145,6 +145,19 @@ namespace YarnImpact
      * the DEM and with the sudden model, where failure is all or nothing.
      * The first damaged cell is the FE's first fibre break. */
     unsigned long n_damaged = 0;
+    /** Momentum of the yarn in the impact direction (-y), the sum over
+     * its nodes of mass times velocity [kg m/s]; 0 where the model does
+     * not compute it (the DEM). */
+    double momentum = 0.;
+    /** Kinetic and strain energy of each group of cells of a model that
+     * sorts them (the FE model given FE::Parameters::energy_group) [J];
+     * empty otherwise. They sum to kinetic_energy and elastic_energy to
+     * round-off. */
+    std::vector<double> group_kinetic_energy, group_elastic_energy;
+    /** The values of the model's own history columns
+     * (ImpactModel::extra_column_names()), in their columns' units; empty
+     * for a model without any. */
+    std::vector<double> extra_columns;
     /** Whether the yarn is cut through: no load path left between the
      * clamps (the run may stop then). */
     bool cut_through = false;

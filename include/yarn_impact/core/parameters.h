@@ -92,6 +92,9 @@ namespace YarnImpact
     {
       cylinder, ///< the paper's: its axis along z, across the yarn
       sphere,   ///< centred on x = z = 0 (Model = fabric only)
+      /** A right circular cylinder, its axis along y, striking with its
+       * flat face (the fragment simulant; Model = fabric only). */
+      flat_cylinder,
     };
 
     /** The rigid projectile (subsection `Projectile`). */
@@ -101,8 +104,12 @@ namespace YarnImpact
       double mass = 9.91e-6;
       /** Diameter of the cylinder or the sphere [m]. */
       double diameter = 2.2e-3;
-      /** Cylinder along z, or sphere. */
+      /** Cylinder along z, sphere or flat-faced cylinder. */
       ProjectileShape shape = ProjectileShape::cylinder;
+      /** Where the projectile strikes: the x [m] of its axis or centre,
+       * and the z [m] of the centre of the sphere or the flat cylinder's
+       * axis (Model = fabric only where not 0). */
+      double offset_x = 0., offset_z = 0.;
       /** Impact speed, towards -y [m/s]. */
       double initial_velocity = 120.;
       /** Free flight or prescribed constant velocity. */

@@ -11,7 +11,10 @@ namespace YarnImpact
    * yarn's width); it moves along y only. A sphere (`Projectile/Shape`,
    * Model = fabric only) has its centre on the line x = z = 0 where the
    * cylinder has its axis: everything here holds for it with "centre" for
-   * "axis" and "point" for "line". At t = 0 its lowest line touches
+   * "axis" and "point" for "line"; so does the flat-faced cylinder, its
+   * axis along y, with its face, a radius below that centre, for the
+   * lowest line. Both can strike off the line x = z = 0
+   * (`Projectile/Impact offset x`, `z`). At t = 0 its lowest line touches
    * the top of the yarn at mid-span: the axis is at
    * \f$y_c = a_y + R\f$, where \f$a_y\f$ is the thickness semi-axis.
    *
@@ -53,7 +56,30 @@ namespace YarnImpact
     bool
     sphere() const
     {
-      return is_sphere;
+      return shape_ == Parameters::ProjectileShape::sphere;
+    }
+
+    /** The projectile's shape (`Projectile/Shape`). */
+    Parameters::ProjectileShape
+    shape() const
+    {
+      return shape_;
+    }
+
+    /** The x [m] of the cylinder's axis, the sphere's centre or the flat
+     * cylinder's axis (`Projectile/Impact offset x`). */
+    double
+    offset_x() const
+    {
+      return x0;
+    }
+
+    /** The z [m] of the sphere's centre or the flat cylinder's axis
+     * (`Projectile/Impact offset z`; the cylinder along z has none). */
+    double
+    offset_z() const
+    {
+      return z0;
     }
 
     /** Mass [kg]. */
@@ -63,7 +89,9 @@ namespace YarnImpact
       return m;
     }
 
-    /** Current y coordinate of the axis [m]. */
+    /** Current y coordinate of the axis [m]; of the flat cylinder's
+     * centre line at its radius above its face, so that the face is at
+     * axis_position() - radius() (the lowest point of every shape). */
     double
     axis_position() const
     {
@@ -146,7 +174,8 @@ namespace YarnImpact
     double y;
     double v;
     bool is_prescribed;
-    bool is_sphere;
+    Parameters::ProjectileShape shape_;
+    double x0, z0;
     double work = 0.;
   };
 } // namespace YarnImpact

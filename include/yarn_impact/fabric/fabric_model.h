@@ -24,17 +24,23 @@ namespace YarnImpact
       /** The contact of crossing yarns (subsection `Fabric/Yarn
        * contact`). */
       YarnContactParameters contact;
+      /** The deflection (along -y) above which a point of the yarns'
+       * surface is inside the cone, for the history's cone fronts [m]. */
+      double cone_threshold = 10e-6;
     };
 
     /**
      * The FE model of subsection `FE` (its law, failure and projectile
      * contact; FE::Parameters) on the woven patch @p fabric.patch
      * (doc/fabric.md): the patch's mesh and fibre directions given to the
-     * FE model (FE::GivenMesh, FE::Parameters::fibre_direction), the ends
-     * of every yarn clamped, and the YarnContact of crossing yarns as its
+     * FE model (FE::GivenMesh, FE::Parameters::fibre_direction), the yarn
+     * ends clamped that WovenPatchGeometry::clamp_warp_ends and
+     * clamp_weft_ends say, and the YarnContact of crossing yarns as its
      * extra forces (FE::ExtraForces), its surface made from the whole mesh
-     * on every rank. The struck face is +y, the projectile's axis z, across
-     * the warp yarns at the patch's centre. Its name is "fabric".
+     * on every rank; the energies of the yarns under the projectile's
+     * footprint and of the others apart (FE::Parameters::energy_group).
+     * The struck face is +y; the projectile strikes at
+     * `Projectile/Impact offset x`, `z`. Its name is "fabric".
      * @param shared the run's parameters; the model uses a copy whose
      * `Yarn/Length` is the warp yarns' span, n_weft s [m]
      */

@@ -39,7 +39,20 @@ namespace YarnImpact
       unsigned int cells_per_spacing = 8;
       /** Refinements of each yarn's 12-cell section [-]. */
       unsigned int section_refinements = 0;
+      /** Whether the two end sections of every warp yarn (the patch's
+       * edges x = +-n_weft s / 2) are clamped; free ends otherwise. */
+      bool clamp_warp_ends = true;
+      /** Whether the two end sections of every weft yarn (the patch's
+       * edges z = +-n_warp s / 2) are clamped; free ends otherwise. */
+      bool clamp_weft_ends = true;
     };
+
+    /** The boundary id of the end sections of a yarn whose ends are free
+     * (WovenPatchGeometry::clamp_warp_ends, clamp_weft_ends): neither
+     * BoundaryIds::lateral nor BoundaryIds::end, so that the FE model
+     * clamps none of its nodes and the yarn contact's surface, made of
+     * the lateral faces, leaves it out. */
+    constexpr unsigned int free_end_boundary_id = 3;
 
     /**
      * A plain-woven patch (doc/fe-model.md section 8.3): n_warp warp yarns
@@ -93,6 +106,14 @@ namespace YarnImpact
         return yarns[id];
       }
 
+      /** The position [m] of yarn @p id across its axis in the fabric's
+       * plane: z_i of warp i, x_j of weft j. */
+      double
+      position(const unsigned int id) const
+      {
+        return offset[id];
+      }
+
       /** The point @p X [m] of the patch in the own frame of yarn @p id
        * [m], where that yarn is a CrimpedYarn centred on z = 0. */
       dealii::Point<3>
@@ -119,7 +140,8 @@ namespace YarnImpact
       /** The mesh: every yarn's CrimpedYarn::create_mesh, placed and
        * turned into the patch, merged into one triangulation with no
        * shared vertex; each cell's material id is its yarn's id, the
-       * boundary ids those of BoundaryIds (lateral, end). */
+       * boundary ids those of BoundaryIds (lateral, end), the end sections
+       * of a yarn with free ends free_end_boundary_id. */
       void
       create_mesh(dealii::Triangulation<3, 3> &mesh) const;
 

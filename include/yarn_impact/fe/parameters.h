@@ -203,6 +203,15 @@ namespace YarnImpact
        * it adds on the FE nodes, with their energy, dissipation, stable
        * step and checkpoint (ExtraForces). None by default. */
       std::shared_ptr<ExtraForces> extra_forces;
+      /** Set by a model made of several yarns, never by a `.prm`: the
+       * group [-], below n_energy_groups, of the cells of each material
+       * id, whose kinetic and strain energies Observables::
+       * group_kinetic_energy and group_elastic_energy give apart (a node
+       * goes with the group of the cells around it: it belongs to one
+       * yarn). None by default. */
+      std::function<unsigned int(unsigned int)> energy_group;
+      /** The number of groups of energy_group [-]. */
+      unsigned int n_energy_groups = 0;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
