@@ -91,7 +91,7 @@ namespace YarnImpact
     namespace
     {
       /**
-       * The start of a rank file (format 2). Its length lets a cut or
+       * The start of a rank file (format 2 and later). Its length lets a cut or
        * over-long file be told from a damaged one; generation, rank and
        * ranks tell a whole file of another checkpoint. The file ends with
        * the CRC-32 of this header and the state.

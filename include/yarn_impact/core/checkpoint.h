@@ -31,7 +31,7 @@ namespace YarnImpact
    *   keeps the previous one.
    *
    * Every checkpoint proves that it is whole before anything is restored
-   * (format 2): a rank file is a header (magic, format, rank, ranks,
+   * (format 3): a rank file is a header (magic, format, rank, ranks,
    * generation, length), the state and a CRC-32 of both; the info file
    * records, for the newest checkpoint and the older one in the other
    * slot, a CRC-32 over the rank files' checksums, and the CRC-32 of
@@ -185,9 +185,10 @@ namespace YarnImpact
 
 
     /** The version of the checkpoint files this build writes and reads:
-     * 2, with checksums (1, without, is refused with a message saying
-     * so). */
-    constexpr unsigned int format = 2;
+     * 3, with checksums, and history rows with the yarn's momentum and a
+     * model's own columns (1, without checksums, and 2, with the shorter
+     * rows, are refused with a message naming their format). */
+    constexpr unsigned int format = 3;
 
     /** One checkpoint as `checkpoint_<model>.txt` records it. */
     struct Record
