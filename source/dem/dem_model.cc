@@ -442,15 +442,19 @@ namespace YarnImpact
           must_rebuild = lists.evaluate_criteria(check_criterion);
         }
         PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_rebuilds);
-        const unsigned long blocks0 = lists.n_rebuilds,
-                            rows0   = lists.rebuilt_rows;
+        const unsigned long blocks0  = lists.n_rebuilds,
+                            rows0    = lists.rebuilt_rows,
+                            partial0 = lists.n_partial,
+                            fast0    = lists.partial_spheres;
         if (check_criterion &&
             prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
           list_check.rebuild_on_missed_contacts(lists, spheres.step_count);
         else
           lists.rebuild_failing(must_rebuild, check_criterion);
         phase_timer.count_rebuilds(lists.n_rebuilds - blocks0,
-                                   lists.rebuilt_rows - rows0);
+                                   lists.rebuilt_rows - rows0,
+                                   lists.n_partial - partial0,
+                                   lists.partial_spheres - fast0);
       }
 
 
