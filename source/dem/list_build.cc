@@ -42,7 +42,7 @@ namespace YarnImpact
           return decomposition.station_of(i);
         };
         ++n_rebuilds;
-        B.stale    = false;
+        B.stale     = false;
         B.halo_grew = false;
         B.searched  = false; // the build covers every sphere
         // The spheres of the build: rows and halo; the rows of the list

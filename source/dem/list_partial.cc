@@ -63,9 +63,9 @@ namespace YarnImpact
         const unsigned int nf = chains.nf;
         const std::size_t se = B.halo_sphere_end, n = se - sb,
                           row_e = B.row_sphere_end;
-        const double *x     = pos.data();
-        const double margin = 8. * 6e-8 * length;
-        const double cut2   = cutoff * cutoff;
+        const double *x         = pos.data();
+        const double margin     = 8. * 6e-8 * length;
+        const double cut2       = cutoff * cutoff;
 
         // The threshold tau: 2 tau is half of what the build's criterion
         // leaves to 2 r besides g and the mirror terms, so that the spheres

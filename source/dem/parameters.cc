@@ -163,13 +163,14 @@ namespace YarnImpact
                         "0.1",
                         Patterns::Double(),
                         "When the rebuild criterion of a neighbour-list "
-                        "block fails: if at most this fraction of the "
-                        "block's spheres moved farther than the partial "
-                        "search threshold since the block was built, only "
-                        "those spheres are searched again for partners and "
-                        "the other pairs are kept; otherwise the block is "
-                        "rebuilt whole. 0 always rebuilds whole blocks. The "
-                        "results do not depend on it, only the speed [-].");
+                        "block fails or its halo grows: if at most this "
+                        "fraction of the block's spheres moved farther than "
+                        "the partial search threshold since the block was "
+                        "built, or joined its halo, only those spheres are "
+                        "searched again for partners and the other pairs "
+                        "are kept; otherwise the block is rebuilt whole. 0 "
+                        "always rebuilds whole blocks. The results do not "
+                        "depend on it, only the speed [-].");
       prm.declare_entry("Check lists",
                         "false",
                         Patterns::Bool(),
