@@ -42,7 +42,11 @@ namespace YarnImpact
       bool
       NeighbourLists::search_fast(ListBlock &B)
       {
+        // With `List rebuilds = missed contact` every block that is stale
+        // or misses a contact is rebuilt whole: that mode counts the
+        // rebuilds the contacts need.
         if ((B.stale && !B.halo_grew) || !(prm.partial_search_fraction > 0.) ||
+            prm.list_rebuilds == Parameters::ListRebuilds::missed_contact ||
             B.n_bins == 0)
           return false;
         // Cross-sections that joined the halo: their spheres are fast (the
