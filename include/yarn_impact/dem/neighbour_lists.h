@@ -260,16 +260,18 @@ namespace YarnImpact
 
         /**
          * Search again only the fast spheres of block @p B, whose criterion
-         * failed at this step (list_partial.cc, doc/dem.md section 4,
-         * "Partial searches"): the spheres that moved farther than the
-         * threshold since the build (relative to their bin) are searched
-         * among all the block's spheres at their current positions, and the
-         * pairs of two other spheres are kept, with the tangential history
-         * of the pairs that stay listed.
+         * failed at this step or whose halo grew (list_partial.cc,
+         * doc/dem.md section 4, "Partial searches"): the spheres that moved
+         * farther than the threshold since the build (relative to their
+         * bin) and those of the cross-sections that joined the halo are
+         * searched among all the block's spheres at their current
+         * positions, and the pairs of two other spheres are kept, with the
+         * tangential history of the pairs that stay listed.
          * @return false, with the lists unchanged, where the block must be
-         * rebuilt whole: it is stale, more than `DEM/Partial search
-         * fraction` of its spheres are fast, or the spheres left out of the
-         * search would not keep the criterion of the build.
+         * rebuilt whole (rebuild() then resets its criterion): it is stale
+         * otherwise, more than `DEM/Partial search fraction` of its spheres
+         * are fast, or the spheres left out of the search would not keep
+         * the criterion of the build.
          */
         bool
         search_fast(ListBlock &B);
