@@ -160,7 +160,7 @@ namespace YarnImpact
                         "1 rebuilds only the failing blocks. The results do "
                         "not depend on it, only the speed [-].");
       prm.declare_entry("Partial search fraction",
-                        "0.1",
+                        "0",
                         Patterns::Double(),
                         "When the rebuild criterion of a neighbour-list "
                         "block fails or its halo grows: if at most this "

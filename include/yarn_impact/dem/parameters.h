@@ -107,7 +107,7 @@ namespace YarnImpact
        * halo) for only those to be searched again (doc/dem.md section 4,
        * "Partial searches"); with more, the block is rebuilt whole. 0 always
        * rebuilds whole blocks. Only the speed depends on it [-]. */
-      double partial_search_fraction = 0.1;
+      double partial_search_fraction = 0.;
       /** Verify after every list update, by a sweep over the spheres sorted
        * along x that knows nothing of the lists, that every pair closer
        * than the diameter (and every such mirror image) is listed; a
