@@ -135,12 +135,24 @@ namespace YarnImpact
             out.put(B.bin_displacement_sum);
             out.put(B.r2_max);
             out.put(B.bound);
+            out.put(B.searched);
+            out.put(B.fast);
+            out.put(B.pos_search);
+            out.put(B.bin_of_search);
+            out.put(B.n_bins_search);
+            out.put(B.bin_count_search);
+            out.put(B.search_mean_displacement);
+            out.put(B.search_displacement_sum);
+            out.put(B.r2_search);
+            out.put(B.r2_search_fast);
           }
         out.put(station_block);
         out.put(n_rebuilds);
         out.put(rebuilt_rows);
         out.put(n_searched);
         out.put(n_candidates);
+        out.put(n_partial);
+        out.put(partial_spheres);
         out.put(last_r);
         out.put(last_g);
       }
@@ -185,12 +197,24 @@ namespace YarnImpact
             in.get(B.bin_displacement_sum);
             in.get(B.r2_max);
             in.get(B.bound);
+            in.get(B.searched);
+            in.get(B.fast);
+            in.get(B.pos_search);
+            in.get(B.bin_of_search);
+            in.get(B.n_bins_search);
+            in.get(B.bin_count_search);
+            in.get(B.search_mean_displacement);
+            in.get(B.search_displacement_sum);
+            in.get(B.r2_search);
+            in.get(B.r2_search_fast);
           }
         in.get_same_size(station_block, "block of each cross-section");
         in.get(n_rebuilds);
         in.get(rebuilt_rows);
         in.get(n_searched);
         in.get(n_candidates);
+        in.get(n_partial);
+        in.get(partial_spheres);
         in.get(last_r);
         in.get(last_g);
       }

@@ -96,8 +96,7 @@ namespace YarnImpact
         observables() const override
         {
           Observables o = meter.measure(projectile_contact);
-          // The timing table's phases (counts of the whole yarn, alike on
-          // every rank).
+          // The timing table's phases (whole-yarn counts, alike on all ranks).
           phase_timer.advance_to(o.cut_through ? 3 : o.n_failed > 0 ? 2 : 0);
           return o;
         }
@@ -300,8 +299,7 @@ namespace YarnImpact
                 // Damping lowers the step as in the scalar bound. The step
                 // is rounded down to 10 significant bits: the bound's sums
                 // may differ in their last bits with the partition, and the
-                // step must not (histories are the same on any number of
-                // ranks).
+                // step must not (the same history on any number of ranks).
                 const double dt =
                   2. / std::sqrt(omega2) * damping_step_factor(prm);
                 int e;
@@ -442,15 +440,19 @@ namespace YarnImpact
           must_rebuild = lists.evaluate_criteria(check_criterion);
         }
         PhaseTimer::Scope scope(phase_timer, PhaseTimer::list_rebuilds);
-        const unsigned long blocks0 = lists.n_rebuilds,
-                            rows0   = lists.rebuilt_rows;
+        const unsigned long blocks0  = lists.n_rebuilds,
+                            rows0    = lists.rebuilt_rows,
+                            partial0 = lists.n_partial,
+                            fast0    = lists.partial_spheres;
         if (check_criterion &&
             prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
           list_check.rebuild_on_missed_contacts(lists, spheres.step_count);
         else
           lists.rebuild_failing(must_rebuild, check_criterion);
         phase_timer.count_rebuilds(lists.n_rebuilds - blocks0,
-                                   lists.rebuilt_rows - rows0);
+                                   lists.rebuilt_rows - rows0,
+                                   lists.n_partial - partial0,
+                                   lists.partial_spheres - fast0);
       }
 
 

@@ -42,7 +42,9 @@ namespace YarnImpact
           return decomposition.station_of(i);
         };
         ++n_rebuilds;
-        B.stale = false;
+        B.stale     = false;
+        B.halo_grew = false;
+        B.searched  = false; // the build covers every sphere
         // The spheres of the build: rows and halo; the rows of the list
         // being replaced.
         const std::size_t old_b = B.row_sphere_begin, old_e = B.row_sphere_end;

@@ -49,6 +49,15 @@ namespace YarnImpact
               << " mirror-image contacts (summed over the evaluations), "
                  "all listed";
             separator = "\n  ";
+            // Collective: the partial searches of all ranks, which the
+            // check covers as it covers the rebuilds.
+            const unsigned long m[2] = {
+              dealii::Utilities::MPI::sum(lists.n_partial, comm),
+              dealii::Utilities::MPI::sum(lists.partial_spheres, comm)};
+            if (m[0] > 0)
+              s << separator << "neighbour-list blocks searched again at "
+                << "their fast spheres only: " << m[0] << " times, " << m[1]
+                << " spheres (all ranks)";
           }
         if (prm.list_rebuilds == Parameters::ListRebuilds::missed_contact)
           {

@@ -83,7 +83,8 @@ namespace YarnImpact
             B.halo_end =
               std::min(g_hi,
                        std::max(B.halo_end, B.row_end + prm.ghost_stations));
-            B.stale = true;
+            B.stale     = true;
+            B.halo_grew = false;
           }
       }
 
@@ -110,8 +111,9 @@ namespace YarnImpact
             for (unsigned int t = B.halo_end; t < g_hi; ++t)
               if (!(lo_x[t] > Xhi + reach || hi_x[t] < Xlo - reach))
                 {
-                  B.halo_end = std::min(g_hi, t + 3);
-                  B.stale    = true;
+                  B.halo_end  = std::min(g_hi, t + 3);
+                  B.halo_grew = !B.stale || B.halo_grew;
+                  B.stale     = true;
                 }
             // A block whose halo covers the next block takes it over: its
             // criterion already follows those spheres, so the other block's
@@ -144,6 +146,33 @@ namespace YarnImpact
 
 
       double
+      NeighbourLists::bin_terms(const unsigned int n_bins,
+                                const std::vector<std::uint32_t> &count,
+                                const std::vector<double> &mean,
+                                double &dz)
+      {
+        double g = 0.;
+        dz       = 0.;
+        int prev = -1;
+        for (unsigned int b = 0; b < n_bins; ++b)
+          {
+            if (count[b] == 0)
+              continue;
+            if (prev >= 0)
+              {
+                const double ex = mean[3 * b] - mean[3 * prev];
+                const double ey = mean[3 * b + 1] - mean[3 * prev + 1];
+                const double ez = mean[3 * b + 2] - mean[3 * prev + 2];
+                g = std::max(g, std::sqrt(ex * ex + ey * ey + ez * ez));
+              }
+            dz   = std::max(dz, std::abs(mean[3 * b + 2]));
+            prev = b;
+          }
+        return g;
+      }
+
+
+      double
       NeighbourLists::list_bound(ListBlock &B)
       {
         // Criterion (doc/dem.md, "Neighbour lists"): with D_b the reference
@@ -152,25 +181,13 @@ namespace YarnImpact
         // g = max |D_{b+1} - D_b| over consecutive non-empty bins, no
         // unlisted pair can touch while 2 r + 2 g (+ 2 max|D_b,z| for mirror
         // pairs in z = 0, + 2 |D_0,x| for mirror pairs in x = 0) < skin.
-        double g = 0., dz = 0.;
-        int prev = -1;
-        for (unsigned int b = 0; b < B.n_bins; ++b)
-          {
-            if (B.bin_count[b] == 0)
-              continue;
-            if (prev >= 0)
-              {
-                const double ex = B.bin_mean_displacement[3 * b] -
-                                  B.bin_mean_displacement[3 * prev];
-                const double ey = B.bin_mean_displacement[3 * b + 1] -
-                                  B.bin_mean_displacement[3 * prev + 1];
-                const double ez = B.bin_mean_displacement[3 * b + 2] -
-                                  B.bin_mean_displacement[3 * prev + 2];
-                g = std::max(g, std::sqrt(ex * ex + ey * ey + ez * ez));
-              }
-            dz   = std::max(dz, std::abs(B.bin_mean_displacement[3 * b + 2]));
-            prev = b;
-          }
+        // After a partial search the spheres it searched are left out of
+        // r, g and the references, and the pairs with one of them are
+        // bounded in the same way from the positions of that search, with
+        // r_all + r_fast in place of 2 r.
+        double dz = 0.;
+        const double g =
+          bin_terms(B.n_bins, B.bin_count, B.bin_mean_displacement, dz);
         // Rounding of the single-precision build positions.
         const double margin = 8. * 6e-8 * length;
         last_r              = std::max(last_r, std::sqrt(B.r2_max));
@@ -179,8 +196,8 @@ namespace YarnImpact
         const double dx0 =
           (B.holds_plane && B.n_bins > 0 ? std::abs(B.bin_mean_displacement[0])
                                          : 0.);
-        const double bound = 2. * std::sqrt(B.r2_max) + 2. * g +
-                             (chains.z_sym ? 2. * dz : 0.) + 2. * dx0 + margin;
+        double bound = 2. * std::sqrt(B.r2_max) + 2. * g +
+                       (chains.z_sym ? 2. * dz : 0.) + 2. * dx0 + margin;
         // New reference: the mean displacement of each bin.
         for (unsigned int b = 0; b < B.n_bins; ++b)
           if (B.bin_count[b] > 0)
@@ -191,6 +208,30 @@ namespace YarnImpact
                   B.bin_displacement_sum.end(),
                   0.);
         B.r2_max = 0.;
+        if (!B.searched)
+          return bound;
+
+        double dz_s        = 0.;
+        const double g_s   = bin_terms(B.n_bins_search,
+                                     B.bin_count_search,
+                                     B.search_mean_displacement,
+                                     dz_s);
+        const double dx0_s = (B.holds_plane && B.n_bins_search > 0
+                                ? std::abs(B.search_mean_displacement[0])
+                                : 0.);
+        bound              = std::max(bound,
+                         std::sqrt(B.r2_search) + std::sqrt(B.r2_search_fast) +
+                           2. * g_s + (chains.z_sym ? 2. * dz_s : 0.) +
+                           2. * dx0_s + margin);
+        for (unsigned int b = 0; b < B.n_bins_search; ++b)
+          if (B.bin_count_search[b] > 0)
+            for (unsigned int c = 0; c < 3; ++c)
+              B.search_mean_displacement[3 * b + c] =
+                B.search_displacement_sum[3 * b + c] / B.bin_count_search[b];
+        std::fill(B.search_displacement_sum.begin(),
+                  B.search_displacement_sum.end(),
+                  0.);
+        B.r2_search = B.r2_search_fast = 0.;
         return bound;
       }
 
@@ -241,6 +282,7 @@ namespace YarnImpact
         B.row_end             = C.row_end;
         B.halo_end            = std::max(B.halo_end, C.halo_end);
         B.stale               = true;
+        B.halo_grew           = false;
         const unsigned int lo = decomposition.lo;
         for (unsigned int t = C.s_begin; t < C.s_end; ++t)
           station_block[t - lo] = station_block[B.s_begin - lo];
@@ -289,7 +331,8 @@ namespace YarnImpact
           }
         for (ListBlock &B : blocks)
           if (B.active() &&
-              (B.stale || !(B.bound < prm.skin) || B.bound >= joint_bound))
+              (B.stale || !(B.bound < prm.skin) || B.bound >= joint_bound) &&
+              !search_fast(B))
             rebuild(B);
       }
 

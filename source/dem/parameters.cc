@@ -159,6 +159,18 @@ namespace YarnImpact
                         "(after fibres break, blocks fail every few steps). "
                         "1 rebuilds only the failing blocks. The results do "
                         "not depend on it, only the speed [-].");
+      prm.declare_entry("Partial search fraction",
+                        "0",
+                        Patterns::Double(),
+                        "When the rebuild criterion of a neighbour-list "
+                        "block fails or its halo grows: if at most this "
+                        "fraction of the block's spheres moved farther than "
+                        "the partial search threshold since the block was "
+                        "built, or joined its halo, only those spheres are "
+                        "searched again for partners and the other pairs "
+                        "are kept; otherwise the block is rebuilt whole. 0 "
+                        "always rebuilds whole blocks. The results do not "
+                        "depend on it, only the speed [-].");
       prm.declare_entry("Check lists",
                         "false",
                         Patterns::Bool(),
@@ -260,6 +272,10 @@ namespace YarnImpact
       require(joint_rebuild_fraction > 0. && joint_rebuild_fraction <= 1.,
               "DEM/Joint rebuild fraction",
               "must be in (0, 1]");
+      partial_search_fraction = prm.get_double("Partial search fraction");
+      require(partial_search_fraction >= 0. && partial_search_fraction <= 1.,
+              "DEM/Partial search fraction",
+              "must be in [0, 1]");
       check_lists   = prm.get_bool("Check lists");
       phase_timing  = prm.get_bool("Phase timing");
       list_rebuilds = (prm.get("List rebuilds") == "missed contact"

@@ -37,15 +37,17 @@ namespace YarnImpact
                       MPI_DOUBLE,
                       MPI_MAX,
                       comm);
-        unsigned long counts[2][n_phases], totals[2][n_phases];
+        unsigned long counts[4][n_phases], totals[4][n_phases];
         for (unsigned int p = 0; p < n_phases; ++p)
           {
             counts[0][p] = rebuilds[p];
             counts[1][p] = rebuilt_spheres[p];
+            counts[2][p] = partial_searches[p];
+            counts[3][p] = searched_spheres[p];
           }
         MPI_Allreduce(&counts[0][0],
                       &totals[0][0],
-                      2 * n_phases,
+                      4 * n_phases,
                       MPI_UNSIGNED_LONG,
                       MPI_SUM,
                       comm);
@@ -60,7 +62,7 @@ namespace YarnImpact
           << "  phase | steps | simulated us | step | trusses | pair "
              "contacts | projectile | list checks | list rebuilds | "
              "communication | integration | stable step | block rebuilds | "
-             "rebuilt spheres\n";
+             "rebuilt spheres | partial searches | searched spheres\n";
         s << std::fixed;
         for (unsigned int p = 0; p < n_phases; ++p)
           {
@@ -70,7 +72,9 @@ namespace YarnImpact
               << largest[p][n_parts] * per;
             for (unsigned int k = 0; k < n_parts; ++k)
               s << " | " << largest[p][k] * per;
-            s << " | " << totals[0][p] << " | " << totals[1][p] << "\n";
+            for (unsigned int c = 0; c < 4; ++c)
+              s << " | " << totals[c][p];
+            s << "\n";
           }
         std::string out = s.str();
         out.pop_back(); // the run summary ends the line

@@ -93,6 +93,8 @@ expect bad_slab_share "DEM/Impact slab share" \
   "subsection DEM" "set Impact slab share = 0" "end"
 expect bad_joint_rebuild "DEM/Joint rebuild fraction" \
   "subsection DEM" "set Joint rebuild fraction = 1.5" "end"
+expect bad_partial_search "DEM/Partial search fraction" \
+  "subsection DEM" "set Partial search fraction = -0.1" "end"
 expect packing_does_not_fit "Parameter 'Yarn/Number of fibres' = 4000: only" \
   "subsection Yarn" "set Number of fibres = 4000" "end"
 expect quarter_asymmetric_file "Parameter 'Symmetry' = quarter needs fibre" \

@@ -70,6 +70,9 @@ namespace YarnImpact
                     halo_sphere_end = 0;
         /** The cross-sections changed since the last build. */
         bool stale = true;
+        /** Stale only because the halo grew: a partial search can take
+         * the new halo spheres in as fast ones. */
+        bool halo_grew = false;
         /** The rows hold the plane x = 0 (mirror pairs in x). */
         bool holds_plane = false;
         /** Pairs in CSR by the row of the lower index; mirror pairs
@@ -106,6 +109,26 @@ namespace YarnImpact
         /** The criterion's bound of this step [m]. */
         double bound = 0.;
 
+        /** Partial searches (doc/dem.md section 4): whether one was made
+         * since the build; then the spheres of the build searched again
+         * (fast, 1 per sphere of [row_sphere_begin, halo_sphere_end)),
+         * which the criterion of the build leaves out (bin_count and the
+         * reference displacements count only the others), and the
+         * criterion of the last partial search: the positions [m] and bins
+         * of all the build's spheres then, and the same terms as above
+         * with their displacements since then. */
+        bool searched = false;
+        std::vector<std::uint8_t> fast;
+        std::vector<float> pos_search;
+        std::vector<std::uint32_t> bin_of_search;
+        unsigned int n_bins_search = 0;
+        std::vector<std::uint32_t> bin_count_search;
+        std::vector<double> search_mean_displacement, search_displacement_sum;
+        /** Largest squared displacement relative to its bin since the
+         * partial search, over all the spheres and over the fast ones
+         * [m^2]. */
+        double r2_search = 0., r2_search_fast = 0.;
+
         /** Whether the block has rows on this rank. */
         bool
         active() const
@@ -123,18 +146,38 @@ namespace YarnImpact
       inline void
       accumulate_criterion(ListBlock &B, const double *pos, const std::size_t i)
       {
-        const std::size_t k   = i - B.row_sphere_begin;
-        const std::uint32_t b = B.bin_of[k];
-        const double dx       = pos[3 * i] - B.pos_build[3 * k];
-        const double dy       = pos[3 * i + 1] - B.pos_build[3 * k + 1];
-        const double dz       = pos[3 * i + 2] - B.pos_build[3 * k + 2];
-        const double rx       = dx - B.bin_mean_displacement[3 * b];
-        const double ry       = dy - B.bin_mean_displacement[3 * b + 1];
-        const double rz       = dz - B.bin_mean_displacement[3 * b + 2];
-        B.r2_max              = std::max(B.r2_max, rx * rx + ry * ry + rz * rz);
-        B.bin_displacement_sum[3 * b] += dx;
-        B.bin_displacement_sum[3 * b + 1] += dy;
-        B.bin_displacement_sum[3 * b + 2] += dz;
+        const std::size_t k = i - B.row_sphere_begin;
+        if (!B.searched || !B.fast[k])
+          {
+            const std::uint32_t b = B.bin_of[k];
+            const double dx       = pos[3 * i] - B.pos_build[3 * k];
+            const double dy       = pos[3 * i + 1] - B.pos_build[3 * k + 1];
+            const double dz       = pos[3 * i + 2] - B.pos_build[3 * k + 2];
+            const double rx       = dx - B.bin_mean_displacement[3 * b];
+            const double ry       = dy - B.bin_mean_displacement[3 * b + 1];
+            const double rz       = dz - B.bin_mean_displacement[3 * b + 2];
+            B.r2_max = std::max(B.r2_max, rx * rx + ry * ry + rz * rz);
+            B.bin_displacement_sum[3 * b] += dx;
+            B.bin_displacement_sum[3 * b + 1] += dy;
+            B.bin_displacement_sum[3 * b + 2] += dz;
+          }
+        if (!B.searched)
+          return;
+        // Since the last partial search: every sphere of the build.
+        const std::uint32_t b = B.bin_of_search[k];
+        const double dx       = pos[3 * i] - B.pos_search[3 * k];
+        const double dy       = pos[3 * i + 1] - B.pos_search[3 * k + 1];
+        const double dz       = pos[3 * i + 2] - B.pos_search[3 * k + 2];
+        const double rx       = dx - B.search_mean_displacement[3 * b];
+        const double ry       = dy - B.search_mean_displacement[3 * b + 1];
+        const double rz       = dz - B.search_mean_displacement[3 * b + 2];
+        const double r2       = rx * rx + ry * ry + rz * rz;
+        B.r2_search           = std::max(B.r2_search, r2);
+        if (B.fast[k])
+          B.r2_search_fast = std::max(B.r2_search_fast, r2);
+        B.search_displacement_sum[3 * b] += dx;
+        B.search_displacement_sum[3 * b + 1] += dy;
+        B.search_displacement_sum[3 * b + 2] += dz;
       }
 
 
@@ -215,6 +258,24 @@ namespace YarnImpact
         void
         rebuild(ListBlock &B);
 
+        /**
+         * Search again only the fast spheres of block @p B, whose criterion
+         * failed at this step or whose halo grew (list_partial.cc,
+         * doc/dem.md section 4, "Partial searches"): the spheres that moved
+         * farther than the threshold since the build (relative to their
+         * bin) and those of the cross-sections that joined the halo are
+         * searched among all the block's spheres at their current
+         * positions, and the pairs of two other spheres are kept, with the
+         * tangential history of the pairs that stay listed.
+         * @return false, with the lists unchanged, where the block must be
+         * rebuilt whole (rebuild() then resets its criterion): it is stale
+         * otherwise, more than `DEM/Partial search fraction` of its spheres
+         * are fast, or the spheres left out of the search would not keep
+         * the criterion of the build.
+         */
+        bool
+        search_fast(ListBlock &B);
+
         /** Counters for the benchmark after @p step_count force evaluations
          * (collective). */
         std::string
@@ -238,6 +299,8 @@ namespace YarnImpact
         unsigned long n_rebuilds = 0, rebuilt_rows = 0;
         /** Spheres searched and candidates tested by the rebuilds. */
         unsigned long n_searched = 0, n_candidates = 0;
+        /** Partial searches, and the fast spheres they searched. */
+        unsigned long n_partial = 0, partial_spheres = 0;
 
       private:
         /** The bound on the relative motion of the pairs of block @p B
@@ -245,6 +308,20 @@ namespace YarnImpact
          * Moves the block's reference displacements on. */
         double
         list_bound(ListBlock &B);
+        /** The terms of the bound over bins @p n_bins with counts
+         * @p count and reference displacements @p mean [m]: g, the largest
+         * difference of consecutive non-empty bins, and the largest |D_b,z|
+         * (@p dz). */
+        static double
+        bin_terms(const unsigned int n_bins,
+                  const std::vector<std::uint32_t> &count,
+                  const std::vector<double> &mean,
+                  double &dz);
+        /** The lists of block @p B after a partial search: its pairs of two
+         * spheres that are not fast and the pairs found for the fast ones
+         * (list_partial.cc). */
+        void
+        merge_fast(ListBlock &B);
         /** Append the rows of block @p C (which follow those of @p B) to
          * @p B. */
         void
@@ -271,6 +348,9 @@ namespace YarnImpact
         std::vector<float> cell_xf, cell_yf, cell_zf;
         std::vector<std::uint32_t> candidate_k;
         std::vector<std::uint8_t> cell_partners;
+        // Scratch of the partial search.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> found_fast;
+        std::vector<MirrorPair> found_mirror;
       };
     } // namespace internal
   }   // namespace DEM

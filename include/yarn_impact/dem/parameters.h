@@ -101,6 +101,13 @@ namespace YarnImpact
        * few steps, each rank on its own, while the others wait); 1
        * rebuilds only failing blocks. Only the speed depends on it [-]. */
       double joint_rebuild_fraction = 0.6;
+      /** When a list block's criterion fails or its halo grows: the
+       * largest share of the block's spheres that may be fast (moved more
+       * than the partial search threshold since the build, or joined the
+       * halo) for only those to be searched again (doc/dem.md section 4,
+       * "Partial searches"); with more, the block is rebuilt whole. 0 always
+       * rebuilds whole blocks. Only the speed depends on it [-]. */
+      double partial_search_fraction = 0.;
       /** Verify after every list update, by a sweep over the spheres sorted
        * along x that knows nothing of the lists, that every pair closer
        * than the diameter (and every such mirror image) is listed; a

@@ -93,12 +93,18 @@ namespace YarnImpact
           simulated[phase] += dt;
         }
 
-        /** Block rebuilds and rebuilt spheres [-] of the current phase. */
+        /** Block rebuilds and rebuilt spheres, partial searches and the
+         * fast spheres they searched [-] of the current phase. */
         void
-        count_rebuilds(const unsigned long blocks, const unsigned long spheres)
+        count_rebuilds(const unsigned long blocks,
+                       const unsigned long spheres,
+                       const unsigned long partial,
+                       const unsigned long fast)
         {
           rebuilds[phase] += blocks;
           rebuilt_spheres[phase] += spheres;
+          partial_searches[phase] += partial;
+          searched_spheres[phase] += fast;
         }
 
         /** Enter phase @p p (0-3) if it is later than the current one; the
@@ -119,8 +125,8 @@ namespace YarnImpact
 
         /** The table of the phases, the same on every rank (collective):
          * per step, the largest over the ranks of each part and of their
-         * sum [ms]; block rebuilds and rebuilt spheres summed over the
-         * ranks. */
+         * sum [ms]; block rebuilds, rebuilt spheres, partial searches and
+         * the spheres they searched summed over the ranks. */
         std::string
         report(const MPI_Comm comm) const;
 
@@ -128,12 +134,14 @@ namespace YarnImpact
         const bool enabled;
 
       private:
-        unsigned int phase                      = 0;
-        double seconds[n_phases][n_parts]       = {};
-        unsigned long steps[n_phases]           = {};
-        double simulated[n_phases]              = {};
-        unsigned long rebuilds[n_phases]        = {};
-        unsigned long rebuilt_spheres[n_phases] = {};
+        unsigned int phase                       = 0;
+        double seconds[n_phases][n_parts]        = {};
+        unsigned long steps[n_phases]            = {};
+        double simulated[n_phases]               = {};
+        unsigned long rebuilds[n_phases]         = {};
+        unsigned long rebuilt_spheres[n_phases]  = {};
+        unsigned long partial_searches[n_phases] = {};
+        unsigned long searched_spheres[n_phases] = {};
       };
     } // namespace internal
   }   // namespace DEM
