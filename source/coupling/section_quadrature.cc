@@ -88,6 +88,29 @@ namespace YarnImpact
     }
 
 
+    namespace
+    {
+      /** The unit coordinates @p u of the point @p p [m] in the section
+       * cell @p cell; false where the mapping cannot invert there. */
+      bool
+      unit_point(const Triangulation<2>::active_cell_iterator &cell,
+                 const Point<2> &p,
+                 Point<2> &u)
+      {
+        static const MappingQ1<2> mapping;
+        try
+          {
+            u = mapping.transform_real_to_unit_cell(cell, p);
+          }
+        catch (...)
+          {
+            return false;
+          }
+        return true;
+      }
+    } // namespace
+
+
     void
     locate_in_section(const Triangulation<2> &section,
                       const Point<2> &p,
@@ -95,20 +118,13 @@ namespace YarnImpact
                       std::array<unsigned int, 4> &vertices,
                       std::array<double, 4> &values)
     {
-      static const MappingQ1<2> mapping;
       static const FE_Q<2> q1(1);
       double best = std::numeric_limits<double>::max();
       for (const auto &cell : section.active_cell_iterators())
         {
           Point<2> u;
-          try
-            {
-              u = mapping.transform_real_to_unit_cell(cell, p);
-            }
-          catch (...)
-            {
-              continue;
-            }
+          if (!unit_point(cell, p, u))
+            continue;
           double outside = 0.;
           for (unsigned int d = 0; d < 2; ++d)
             outside = std::max({outside, -u[d], u[d] - 1.});
@@ -155,7 +171,6 @@ namespace YarnImpact
       // each of them in equal parts, so that the quadrature is as
       // symmetric as the section and the fibres; in a quarter model a fibre
       // on z = 0 is half a fibre.
-      static const MappingQ1<2> mapping;
       static const FE_Q<2> shape(1);
       for (unsigned int f = 0; f < centres.size(); ++f)
         {
@@ -168,14 +183,8 @@ namespace YarnImpact
           for (const auto &cell : section.active_cell_iterators())
             {
               Point<2> u;
-              try
-                {
-                  u = mapping.transform_real_to_unit_cell(cell, p);
-                }
-              catch (...)
-                {
-                  continue;
-                }
+              if (!unit_point(cell, p, u))
+                continue;
               if (std::min(u[0], u[1]) < -1e-10 ||
                   std::max(u[0], u[1]) > 1. + 1e-10)
                 continue;
