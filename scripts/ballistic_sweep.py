@@ -54,6 +54,7 @@ import sys
 import time
 
 import folder_lock
+import script_errors
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -97,8 +98,7 @@ def reflection_time(E=FIBRE_MODULUS, rho=DENSITY):
 PROG = os.path.basename(__file__)
 
 
-class Failure(Exception):
-    """A bad argument, file or run: one line, exit code 1."""
+Failure = script_errors.Failure
 
 
 def exact(x):
@@ -450,25 +450,5 @@ def write_tables(args, table, critical, smith, t_r):
             f.write("%s,%s\n" % (model, "" if vc is None else "%.1f" % vc))
 
 
-def entry():
-    """main() with every failure on one line, never a traceback."""
-    try:
-        return main()
-    except Failure as e:
-        sys.stderr.write("%s: error: %s\n" % (PROG, e))
-        return 1
-    except KeyboardInterrupt:
-        sys.stderr.write("%s: error: interrupted\n" % PROG)
-        return 130
-    except OSError as e:
-        sys.stderr.write("%s: error: %s%s\n" % (
-            PROG, e.strerror or e,
-            ": " + e.filename if getattr(e, "filename", None) else ""))
-        return 1
-    except Exception as e:  # never a traceback
-        sys.stderr.write("%s: error: %s: %s\n" % (PROG, type(e).__name__, e))
-        return 1
-
-
 if __name__ == "__main__":
-    sys.exit(entry())
+    sys.exit(script_errors.run(main, PROG))

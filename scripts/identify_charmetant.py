@@ -36,14 +36,14 @@ import os
 import sys
 
 import folder_lock
+import script_errors
 import numpy as np
 from scipy.optimize import minimize_scalar, nnls
 
 PROG = os.path.basename(__file__)
 
 
-class Failure(Exception):
-    """A bad argument or file: one line, exit code 1."""
+Failure = script_errors.Failure
 
 
 def invariants(F):
@@ -504,20 +504,5 @@ def main():
         sys.exit(0 if ok else 1)
 
 
-def entry():
-    """main() with every failure on one line, never a traceback."""
-    try:
-        return main()
-    except Failure as e:
-        sys.stderr.write("%s: error: %s\n" % (PROG, e))
-        return 1
-    except KeyboardInterrupt:
-        sys.stderr.write("%s: error: interrupted\n" % PROG)
-        return 130
-    except Exception as e:  # never a traceback
-        sys.stderr.write("%s: error: %s: %s\n" % (PROG, type(e).__name__, e))
-        return 1
-
-
 if __name__ == "__main__":
-    sys.exit(entry())
+    sys.exit(script_errors.run(main, PROG))

@@ -403,26 +403,22 @@ namespace YarnImpact
         std::swap(mirror_tangential_displacement,
                   mirror_tangential_displacement_old);
         mpairs.clear();
+        // Pairs in z = 0 belong to the block of the lower index; pairs in
+        // x = 0 all to the block holding the plane, whose build holds every
+        // sphere that can come near the plane.
         const auto add_mirror = [&](const std::size_t i,
                                     const std::size_t j,
                                     const std::uint8_t axes,
                                     const double w) {
-          // Pairs in z = 0 belong to the block of the lower index; pairs in
-          // x = 0 all to the block holding the plane, whose build holds
-          // every sphere that can come near the plane.
-          if ((!owned(i) && !owned(j)) ||
-              (!(axes & 1) && std::min(i, j) >= row_e))
-            return;
-          const double sx = (axes & 1) ? -1. : 1., sz = (axes & 2) ? -1. : 1.;
-          const double ex = pos[3 * i] - sx * pos[3 * j],
-                       ey = pos[3 * i + 1] - pos[3 * j + 1],
-                       ez = pos[3 * i + 2] - sz * pos[3 * j + 2];
-          if (ex * ex + ey * ey + ez * ez < cut2)
-            mpairs.push_back({static_cast<std::uint32_t>(std::min(i, j)),
-                              static_cast<std::uint32_t>(std::max(i, j)),
-                              static_cast<float>(w),
-                              axes,
-                              false});
+          add_mirror_pair_if_near(i,
+                                  j,
+                                  axes,
+                                  w,
+                                  pos.data(),
+                                  cut2,
+                                  row_e,
+                                  owned,
+                                  mpairs);
         };
         // In z = 0 (quarter): spheres off that plane within the cut-off of
         // it, in the same or the next bin.

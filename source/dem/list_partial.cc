@@ -279,19 +279,15 @@ namespace YarnImpact
                                     const std::size_t j,
                                     const std::uint8_t axes,
                                     const double w) {
-          if ((!owned(i) && !owned(j)) ||
-              (!(axes & 1) && std::min(i, j) >= row_e))
-            return;
-          const double sx = (axes & 1) ? -1. : 1., sz = (axes & 2) ? -1. : 1.;
-          const double ex = x[3 * i] - sx * x[3 * j],
-                       ey = x[3 * i + 1] - x[3 * j + 1],
-                       ez = x[3 * i + 2] - sz * x[3 * j + 2];
-          if (ex * ex + ey * ey + ez * ez < cut2)
-            found_mirror.push_back({static_cast<std::uint32_t>(std::min(i, j)),
-                                    static_cast<std::uint32_t>(std::max(i, j)),
-                                    static_cast<float>(w),
-                                    axes,
-                                    false});
+          add_mirror_pair_if_near(i,
+                                  j,
+                                  axes,
+                                  w,
+                                  x,
+                                  cut2,
+                                  row_e,
+                                  owned,
+                                  found_mirror);
         };
         const std::vector<double> &zmask = chains.zmask;
         for (std::size_t k = 0; k < n; ++k)

@@ -6,10 +6,8 @@
 # that hold an earlier run (refused, or replaced with Output/Overwrite).
 exe=$1
 src=$2
-failures=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 
 expect_failure() { # name, expected text, command...
   local name=$1 text=$2
@@ -134,5 +132,4 @@ if "$exe" --help | grep -q "Usage"; then
 else
   echo "FAILED --help"; failures=$((failures + 1))
 fi
-echo "$failures failed"
-[ $failures -eq 0 ]
+test_end

@@ -15,14 +15,9 @@
 # damaged, a changed parameters.prm and a checkpoint of format 1 are
 # refused.
 exe=$1
-failures=0
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 checked=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
 
 # run RANKS ARGS...: run on RANKS ranks; sets rc, stdout and stderr.
 run() {
@@ -202,8 +197,4 @@ if [ "$rc" -ne 1 ] || [ "$(wc -l < stderr)" -ne 1 ] ||
 fi
 
 echo "$checked damaged restarts checked"
-if [ $failures -ne 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "all checkpoint damage cases passed"
+test_end "all checkpoint damage cases passed"

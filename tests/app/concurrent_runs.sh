@@ -11,19 +11,13 @@
 # - the lock of a dead owner (SIGKILL) or a lock file left with a dead PID
 #   does not block: the restart or the new run goes on.
 exe=$1
-failures=0
-work=$(mktemp -d)
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin cleanup
 pids=()
 cleanup() {
   for p in "${pids[@]}"; do kill -KILL "$p" 2> /dev/null; done
-  rm -rf "$work"
 }
-trap cleanup EXIT
-cd "$work" || exit 1
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 host=$(hostname)
-
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
 
 # A small FE case (about a second): directory, end time, extra Output lines.
 fe_prm() {
@@ -171,8 +165,4 @@ else
   echo "ok     stale lock file of a dead process: taken over"
 fi
 
-if [ $failures -ne 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "all concurrent-run cases passed"
+test_end "all concurrent-run cases passed"

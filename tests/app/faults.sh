@@ -8,14 +8,9 @@
 # the history must end with its last whole row; no summary.txt, snapshot or
 # PVD may be left half-written (no *.tmp either).
 exe=$1
-failures=0
-work=$(mktemp -d)
-cleanup() { mountpoint -q "$work/tmpfs" 2> /dev/null && umount "$work/tmpfs"; rm -rf "$work"; }
-trap cleanup EXIT
-cd "$work" || exit 1
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin cleanup
+cleanup() { mountpoint -q "$work/tmpfs" 2> /dev/null && umount "$work/tmpfs"; }
 
 # A small FE case: quarter symmetry, 40 cells along the axis.
 fe_prm() { # directory, end time, snapshot interval
@@ -147,5 +142,4 @@ else
   echo "note   a tmpfs cannot be mounted here: the real full disk is not tried"
 fi
 
-echo "$failures failed"
-[ $failures -eq 0 ]
+test_end

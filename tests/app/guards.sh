@@ -16,17 +16,12 @@
 exe=$1
 src=$2
 py=/usr/bin/python3
-failures=0
-work=$(mktemp -d)
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin cleanup
 pids=()
 cleanup() {
   for p in "${pids[@]}"; do kill -KILL "$p" 2> /dev/null; done
-  rm -rf "$work"
 }
-trap cleanup EXIT
-cd "$work" || exit 1
-
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
 
 # refused NAME CODE PATTERN CMD...: CMD exits CODE with PATTERN on the one
 # line of its stderr.
@@ -103,8 +98,4 @@ refused "second identification" 1 "^identify_charmetant.py: error: the folder of
 kill -TERM $holder 2> /dev/null
 wait $holder 2> /dev/null
 
-if [ $failures -ne 0 ]; then
-  echo "$failures check(s) failed"
-  exit 1
-fi
-echo "guards: non-finite energies stopped, too-large elementary tests refused, second sweep and identification refused"
+test_end "guards: non-finite energies stopped, too-large elementary tests refused, second sweep and identification refused"

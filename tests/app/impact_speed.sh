@@ -4,11 +4,8 @@
 # reason: the FE stable step follows the closing speed of the impact
 # (doc/fe-model.md), and a step too small to reach the end time is refused.
 exe=$1
-failures=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 
 case_prm() { # velocity, directory, extra FE lines, extra top-level lines
   printf 'set Symmetry = quarter\nsubsection Projectile\n  set Initial velocity = %s\nend\n' "$1"
@@ -76,5 +73,4 @@ if [ $rc -ne 1 ] || ! grep -qF "dem model's stable time step" stderr ||
 else
   echo "ok     DEM at 1e8 m/s: $(cat stderr)"
 fi
-echo "$failures failed"
-[ $failures -eq 0 ]
+test_end

@@ -12,12 +12,8 @@
 # the run's parameters.prm is the expanded, valid parameter set. Also: a
 # parameter file with an unknown extension is refused naming it.
 exe=$1
-failures=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 
 # refused NAME TEXT ARGS...: exit 1, one line on stderr holding TEXT (a
 # fixed string), nothing written (no folder out).
@@ -159,5 +155,4 @@ else
   echo "ok     an included file the run would overwrite: $(cat elsewhere/stderr)"
 fi
 
-[ $failures -eq 0 ] && echo "all include cases passed"
-exit $((failures > 0))
+test_end "all include cases passed"

@@ -9,11 +9,8 @@
 # partition changes the dynamics or a reduced observable, by any amount.
 exe=$1
 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-failures=0
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 for case in no_failure failure half_friction; do
   for n in 1 2 3; do
     dir=${case}_$n
@@ -47,4 +44,4 @@ for case in no_failure failure half_friction; do
     fi
   done
 done
-[ $failures -eq 0 ]
+test_end

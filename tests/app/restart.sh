@@ -9,13 +9,8 @@
 # nothing. Refusals (other parameters, another rank count, no checkpoint, a
 # damaged checkpoint) must exit 1 with one line saying why.
 exe=$1
-failures=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 
 # run RANKS ARGS...: run on RANKS ranks; sets rc, stderr in ./stderr.
 run() {
@@ -205,8 +200,4 @@ else
 fi
 same "restart after an external SIGTERM" ref_term term history_fe.csv
 
-if [ $failures -ne 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "all restart cases passed"
+test_end "all restart cases passed"

@@ -8,12 +8,8 @@
 # saying 0 ranks, or a checkpoint info file that is a directory, is refused
 # as damaged naming the file.
 exe=$1
-failures=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 
 # refused NAME REGEX ARGS...: exit 1, one line matching REGEX (grep -E).
 refused() {
@@ -94,5 +90,4 @@ fe_prm early 1e-6 > early.prm
 mkdir early && cp moved/parameters.prm early/ && sed -i 's/= moved/= early/' early/parameters.prm
 refused "no checkpoint" "holds no checkpoint .*in another Output/Directory" --restart early.prm
 
-[ $failures -eq 0 ] && echo "all restart message cases passed"
-exit $((failures > 0))
+test_end "all restart message cases passed"

@@ -11,15 +11,11 @@
 # them again when the executable or the base prm changes.
 src=$1
 curves=$2
-failures=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 py=/usr/bin/python3
 identify="$src/scripts/identify_charmetant.py"
 sweep="$src/scripts/ballistic_sweep.py"
-
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
 
 # refused NAME CODE TEXT COMMAND...: exit CODE, one line on stderr starting
 # with "SCRIPT: error:" and holding TEXT, no traceback.
@@ -119,5 +115,4 @@ touch a_file
 refused "sweep: --out is a file" 1 "exists and is not a folder" $py "$sweep" --build fake --out a_file
 refused "sweep: --out under a file" 1 "cannot be created" $py "$sweep" --build fake --out a_file/sub
 
-[ $failures -eq 0 ] && echo "all script cases passed"
-exit $((failures > 0))
+test_end "all script cases passed"

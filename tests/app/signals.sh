@@ -17,18 +17,12 @@
 # takes about a second more to end after its ranks).
 exe=$1
 prm_dir=$2
-failures=0
-work=$(mktemp -d)
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin cleanup
 pids=()
 cleanup() {
   for p in "${pids[@]}"; do kill -KILL "$p" 2> /dev/null; done
-  rm -rf "$work"
 }
-trap cleanup EXIT
-cd "$work" || exit 1
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
 
 # An FE case of about 2 s, with no history row between t = 0 and its end.
 fe_prm() {
@@ -129,8 +123,4 @@ for n in 1 2; do
   echo "elementary on $n rank(s), SIG$sig: stopped in $waited ms, $(($(wc -l < "$dir/elementary_compaction.csv.partial") - 1)) whole rows kept"
 done
 
-if [ $failures -ne 0 ]; then
-  echo "$failures check(s) failed"
-  exit 1
-fi
-echo "signals: every run stopped within a few seconds with exit 6"
+test_end "signals: every run stopped within a few seconds with exit 6"

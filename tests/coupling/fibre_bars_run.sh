@@ -18,15 +18,8 @@
 # - bad set-ups refused by --check with one line naming the parameter.
 exe=$1
 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-failures=0
-fail() {
-  echo "FAILED $*"
-  failures=$((failures + 1))
-}
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 . "$src/tests/coupling/run_checks.sh"
 
 bars_prm() {
@@ -39,8 +32,6 @@ bars_prm() {
   printf '  set Window end = 1.8e-6\n  set Energy tolerance = 5e-4\n  set Tolerance = 0.02\nend\n'
 }
 
-# 3 ranks on this 2-core machine: oversubscribed.
-export OMPI_MCA_rmaps_base_oversubscribe=1
 same_on_ranks bars_prm 1 2 3
 grep -E "longitudinal speed|energy error" ranks1/summary.txt
 
@@ -95,8 +86,4 @@ refuse bars_prm "fibre bars with the linear law" "FE/Constitutive law" \
 refuse bars_prm "an unknown far field" "Far field" \
   'subsection Hybrid\n  set Far field = springs\nend\n'
 
-if [ $failures -ne 0 ]; then
-  echo "$failures check(s) failed"
-  exit 1
-fi
-echo "fibre bars: bar speed, energy, 1 = 2 = 3 ranks, restart, snapshot, bad set-ups: all passed"
+test_end "fibre bars: bar speed, energy, 1 = 2 = 3 ranks, restart, snapshot, bad set-ups: all passed"

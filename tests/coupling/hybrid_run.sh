@@ -18,16 +18,8 @@
 #   parameter.
 exe=$1
 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-failures=0
-fail() {
-  echo "FAILED $*"
-  failures=$((failures + 1))
-}
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 
 # hybrid_prm DIR: the ready case, 3 us, checks on.
 hybrid_prm() {
@@ -99,8 +91,4 @@ refuse plain_prm "clamp part meeting the nose's overlap" "Hybrid/Clamp DEM lengt
 refuse plain_prm "negative clamp part" "Hybrid/Clamp DEM length" \
   'subsection Hybrid\n  set Clamp DEM length = -2e-3\nend\n'
 
-if [ $failures -ne 0 ]; then
-  echo "$failures check(s) failed"
-  exit 1
-fi
-echo "hybrid: Smith deceleration and energy, 1 = 2 = 3 ranks, restart, clamp part, bad set-ups: all passed"
+test_end "hybrid: Smith deceleration and energy, 1 = 2 = 3 ranks, restart, clamp part, bad set-ups: all passed"

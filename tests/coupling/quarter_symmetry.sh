@@ -16,14 +16,8 @@
 #   over the run).
 exe=$1
 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-failures=0
-fail() {
-  echo "FAILED $*"
-  failures=$((failures + 1))
-}
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 
 /usr/bin/python3 - << 'END'
 import math
@@ -82,8 +76,4 @@ END
     fail "$far: the quarter model's history differs from the half model's"
 done
 
-if [ $failures -ne 0 ]; then
-  echo "$failures check(s) failed"
-  exit 1
-fi
-echo "hybrid: quarter = half for both far fields: all passed"
+test_end "hybrid: quarter = half for both far fields: all passed"

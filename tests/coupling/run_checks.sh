@@ -1,26 +1,6 @@
-# Sourced by the hybrid yarn's run tests (hybrid_run.sh, fibre_bars_run.sh),
-# which define $exe, fail() and a function PRM DIR that writes the case's
-# parameter file with its output in DIR.
-# same_history A B: byte for byte (every sum over spheres, bars and cells
-# is reproducible: the same on any number of ranks); otherwise the first
-# row and column that differ.
-same_history() {
-  cmp -s "$1" "$2" && return 0
-  /usr/bin/python3 - "$1" "$2" << 'END'
-import csv, sys
-a, b = (list(csv.reader(open(p))) for p in sys.argv[1:3])
-if len(a) != len(b) or a[0] != b[0]:
-    print(f"{len(a)} against {len(b)} rows, or other columns")
-    sys.exit(1)
-h = a[0]
-for x, y in zip(a[1:], b[1:]):
-    for k in range(len(h)):
-        if x[k] != y[k]:
-            print(f"t = {x[0]} us, {h[k]}: {x[k]} against {y[k]}")
-            sys.exit(1)
-END
-  return 1
-}
+# Sourced by the hybrid yarn's run tests (hybrid_run.sh, fibre_bars_run.sh)
+# after tests/lib.sh (fail, same_history); they define $exe and a function
+# PRM DIR that writes the case's parameter file with its output in DIR.
 
 # same_on_ranks PRM N...: run the case of PRM on each number of ranks (in
 # rank folders ranksN); every history the same as on the first.

@@ -48,6 +48,40 @@ namespace YarnImpact
                (a.i == b.i && (a.j < b.j || (a.j == b.j && a.axes < b.axes)));
       }
 
+      /** The rule of the list builds for a mirror pair candidate (i, j,
+       * axes) of weight w [-]: kept, as (min, max), when one of i and j is
+       * owned, when a pair in z = 0 only (axes without bit 1) has its
+       * lower index below row_end (such pairs belong to the block of the
+       * lower index), and when the sphere i and the image of j are closer
+       * than the cut-off, cut2 its square [m^2]. x holds the positions
+       * [m], 3 per sphere. */
+      template <typename Owned>
+      inline void
+      add_mirror_pair_if_near(const std::size_t i,
+                              const std::size_t j,
+                              const std::uint8_t axes,
+                              const double w,
+                              const double *x,
+                              const double cut2,
+                              const std::size_t row_end,
+                              const Owned &owned,
+                              std::vector<MirrorPair> &pairs)
+      {
+        if ((!owned(i) && !owned(j)) ||
+            (!(axes & 1) && std::min(i, j) >= row_end))
+          return;
+        const double sx = (axes & 1) ? -1. : 1., sz = (axes & 2) ? -1. : 1.;
+        const double ex = x[3 * i] - sx * x[3 * j],
+                     ey = x[3 * i + 1] - x[3 * j + 1],
+                     ez = x[3 * i + 2] - sz * x[3 * j + 2];
+        if (ex * ex + ey * ey + ez * ez < cut2)
+          pairs.push_back({static_cast<std::uint32_t>(std::min(i, j)),
+                           static_cast<std::uint32_t>(std::max(i, j)),
+                           static_cast<float>(w),
+                           axes,
+                           false});
+      }
+
 
       /** The neighbour list of a block of consecutive cross-sections of a
        * rank (doc/dem.md section 4): the pairs whose lower sphere index is

@@ -83,15 +83,14 @@ namespace YarnImpact
           g[3 * a + d] = grad[gradient_index(q, a, d)];
     }
 
-    /** F = I + sum_a u_a (x) grad N_a at one Gauss point, from the nodal
-     * displacements u [m] and the shape gradients g [1/m] (both 3a + d). */
+    /** F += sum_a u_a (x) g_a, from the nodal displacements u [m] and the
+     * shape gradients g [1/m] (both 3a + d): the part of the deformation
+     * gradient that both of its forms below add to their reference. */
     inline void
-    deformation_gradient(const double *u,
-                         const double *g,
-                         Mechanics::Matrix3 &F)
+    add_displacement_gradient(const double *u,
+                              const double *g,
+                              Mechanics::Matrix3 &F)
     {
-      F[0] = F[4] = F[8] = 1.;
-      F[1] = F[2] = F[3] = F[5] = F[6] = F[7] = 0.;
       for (unsigned int a = 0; a < n_nodes; ++a)
         {
           const double g0 = g[3 * a], g1 = g[3 * a + 1], g2 = g[3 * a + 2];
@@ -103,6 +102,18 @@ namespace YarnImpact
               F[3 * i + 2] += ui * g2;
             }
         }
+    }
+
+    /** F = I + sum_a u_a (x) grad N_a at one Gauss point, from the nodal
+     * displacements u [m] and the shape gradients g [1/m] (both 3a + d). */
+    inline void
+    deformation_gradient(const double *u,
+                         const double *g,
+                         Mechanics::Matrix3 &F)
+    {
+      F[0] = F[4] = F[8] = 1.;
+      F[1] = F[2] = F[3] = F[5] = F[6] = F[7] = 0.;
+      add_displacement_gradient(u, g, F);
     }
 
     /** F R = R + sum_a u_a (x) g_a at one Gauss point with the fibre
@@ -117,17 +128,7 @@ namespace YarnImpact
     {
       for (unsigned int k = 0; k < 9; ++k)
         F[k] = R[k];
-      for (unsigned int a = 0; a < n_nodes; ++a)
-        {
-          const double g0 = g[3 * a], g1 = g[3 * a + 1], g2 = g[3 * a + 2];
-          for (unsigned int i = 0; i < 3; ++i)
-            {
-              const double ui = u[3 * a + i];
-              F[3 * i] += ui * g0;
-              F[3 * i + 1] += ui * g1;
-              F[3 * i + 2] += ui * g2;
-            }
-        }
+      add_displacement_gradient(u, g, F);
     }
 
     /** What has become of a cell (CellData::state). */
