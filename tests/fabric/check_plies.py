@@ -1,0 +1,177 @@
+#!/usr/bin/python3
+"""Checks of the plies and the broken yarns of Model = fabric runs
+(fabric_runs.sh plies and broken) on their history CSVs and snapshots.
+Prints one line per check, "ok" or "FAILED", and exits 1 if one failed.
+
+  plies DIR H A AY   a patch of two plies, their mid-planes H [m] apart,
+                     crimp amplitude A [m], thickness semi-axis AY [m],
+                     struck at the centre by the cylinder, no failure, a
+                     history row at every step:
+    (1) the plies' energies: each ply's kinetic and strain energies sum to
+        the yarns' kinetic and strain energy columns at every row, within
+        1e-9 of them (their 10 digits; reproducible sums of the same
+        terms) plus 1e-15 mJ;
+    (2) the lower ply is set in motion only through the yarn contact: its
+        kinetic and strain energies are exactly 0 until the upper ply can
+        have crossed the gap between them, g = H - 2 (A + AY) (the crests'
+        tops of one ply to the troughs' bottoms of the other, aligned
+        plies), that is at every row before t_0 + g / (2 v_0), t_0 the
+        first row with a contact force, v_0 the projectile's initial speed
+        (a light body struck elastically by a heavy one leaves at 2 v_0 at
+        most); and they are not 0 by the end (the plies touched);
+    (3) the time t_1 of the lower ply's first motion against the closed
+        form t_0 + g / v_0 (the struck ply moving with the projectile),
+        within [0.5, 1.5] of the time g / v_0 it takes: printed with the
+        ratio (t_1 - t_0) / (g / v_0).
+  broken DIR         a patch with a low Yarn/Failure strain, sudden
+                     failure, and a snapshot at its last row:
+    (1) the history's broken yarns 0 at every row without a failed or
+        eroded cell, never decreasing, and above 0 at the end;
+    (2) at most (failed + eroded cells) / 12 (a section has 12 cells);
+    (3) the last snapshot's count by other code: each cell's yarn, ply,
+        failed state, damage and reference centre, its section the
+        interval of Cells per spacing per Yarn spacing along its yarn (x
+        of a warp yarn, z of a weft yarn), a yarn broken where one of its
+        sections has every cell failed (broken, fully damaged or eroded):
+        equal to the history's last row.
+
+Usage: check_plies.py plies DIR H A AY | broken DIR N_WARP N_WEFT S CPS
+"""
+import array
+import base64
+import csv
+import glob
+import math
+import re
+import struct
+import sys
+import zlib
+
+failures = 0
+
+
+def check(ok, text):
+    global failures
+    print(("ok     " if ok else "FAILED ") + text)
+    if not ok:
+        failures += 1
+
+
+def history(directory):
+    with open(f"{directory}/history_fabric.csv") as f:
+        rows = list(csv.reader(f))
+    return rows[0], [[float(x) for x in r] for r in rows[1:]]
+
+
+# Columns of the history CSV (doc/user-guide.md, "History columns").
+T, V, F, KY, EL, FAILED, ERODED = 0, 4, 5, 6, 8, 14, 22
+
+
+def plies(directory, h, a, ay):
+    header, rows = history(directory)
+    cols = [(header.index(f"ply {p} kinetic energy [mJ]"),
+             header.index(f"ply {p} strain energy [mJ]")) for p in (0, 1)]
+    worst = max(max(abs(sum(r[k] for k, e in cols) - r[KY]) /
+                    (abs(r[KY]) + 1e-6),
+                    abs(sum(r[e] for k, e in cols) - r[EL]) /
+                    (abs(r[EL]) + 1e-6)) for r in rows)
+    ok = all(abs(sum(r[k] for k, e in cols) - r[KY]) <=
+             1e-9 * abs(r[KY]) + 1e-15 and
+             abs(sum(r[e] for k, e in cols) - r[EL]) <=
+             1e-9 * abs(r[EL]) + 1e-15 for r in rows)
+    check(ok, f"plies: their kinetic and strain energies sum to the yarns' "
+          f"within {worst:.3g} of them (at most 1e-9 plus 1e-15 mJ)")
+    v0 = rows[0][V]
+    gap = h - 2 * (a + ay)
+    t0 = next(r[T] for r in rows if r[F] != 0.)
+    bound = t0 + 1e6 * gap / (2 * v0)
+    k1, e1 = cols[1]
+    moving = [r for r in rows if r[k1] != 0. or r[e1] != 0.]
+    still = all(r[k1] == 0. and r[e1] == 0. for r in rows if r[T] < bound)
+    last = rows[-1]
+    check(still and moving and last[k1] > 0.,
+          f"lower ply still until the upper one can reach it: gap "
+          f"{1e3 * gap:.4g} mm, first contact at {t0:.4g} us, its energies "
+          f"exactly 0 before {bound:.4g} us; first moving at "
+          f"{moving[0][T] if moving else float('nan'):.4g} us; at the end "
+          f"{last[k1]:.4g} + {last[e1]:.4g} mJ (ply 0: "
+          f"{last[cols[0][0]]:.4g} + {last[cols[0][1]]:.4g} mJ)")
+    if moving:
+        crossing = 1e6 * gap / v0
+        ratio = (moving[0][T] - t0) / crossing
+        check(0.5 <= ratio <= 1.5, f"lower ply's first motion "
+              f"{moving[0][T] - t0:.4g} us after the first contact, the "
+              f"closed form g / v0 = {crossing:.4g} us: ratio {ratio:.3f} "
+              f"(within 0.5 to 1.5)")
+
+
+def read_cells(path):
+    """Each cell's reference centre, yarn, ply, failed state and damage."""
+    text = open(path).read()
+    res = {}
+    for m in re.finditer(r'<DataArray type="(\w+)"([^>]*)format="binary">'
+                         r'\s*(\S+)\s*</DataArray>', text):
+        name = re.search(r'Name="(\w+)"', m.group(2))
+        name = name.group(1) if name else "points"
+        s = m.group(3)
+        n_blocks = struct.unpack("<I", base64.b64decode(s[:8])[:4])[0]
+        header = (((3 + n_blocks) * 4 + 2) // 3) * 4
+        kind = {"Float32": "f", "Float64": "d", "Int32": "i", "UInt32": "I",
+                "Int64": "q", "UInt8": "B"}[m.group(1)]
+        arr = array.array(kind)
+        arr.frombytes(zlib.decompress(base64.b64decode(s[header:])))
+        res[name] = arr
+    P, U = res["points"], res["displacement"]
+    conn = res["connectivity"]
+    cells = []
+    for c in range(len(res["yarn"])):
+        centre = [0., 0., 0.]
+        for i in conn[8 * c:8 * c + 8]:
+            for d in range(3):
+                centre[d] += (P[3 * i + d] - U[3 * i + d]) / 8
+        cells.append((centre, int(res["yarn"][c]), int(res["ply"][c]),
+                      res["failed"][c], res["damage"][c]))
+    return cells
+
+
+def broken(directory, n_warp, n_weft, s, cps):
+    header, rows = history(directory)
+    col = header.index("broken yarns")
+    zero = all(r[col] == 0 for r in rows if r[FAILED] == 0 and r[ERODED] == 0)
+    rising = all(b[col] >= a[col] for a, b in zip(rows, rows[1:]))
+    last = rows[-1]
+    first = next((r[T] for r in rows if r[col] > 0), float("nan"))
+    check(zero and rising and last[col] > 0,
+          f"broken yarns: 0 at every row without a failed cell, never "
+          f"falling, {last[col]:.0f} at the end (first at {first:.4g} us; "
+          f"{last[FAILED]:.0f} failed and {last[ERODED]:.0f} eroded cells)")
+    check(last[col] * 12 <= last[FAILED] + last[ERODED],
+          f"broken yarns: {last[col]:.0f} x 12 cells at most the failed and "
+          f"eroded ones, {last[FAILED] + last[ERODED]:.0f}")
+    files = sorted(glob.glob(f"{directory}/fe_*.vtu"))
+    if not files:
+        check(False, f"no snapshot in {directory}")
+        return
+    sections = {}
+    per_ply = n_warp + n_weft
+    for centre, yarn, ply, failed, damage in read_cells(files[-1]):
+        warp = yarn % per_ply < n_warp
+        along = centre[0] if warp else centre[2]
+        n = n_weft if warp else n_warp
+        k = math.floor((along + 0.5 * n * s) / (s / cps))
+        key = (yarn, k)
+        total, down = sections.get(key, (0, 0))
+        sections[key] = (total + 1, down + (failed != 0 or damage >= 1))
+    yarns = {y for (y, k), (total, down) in sections.items() if down == total}
+    check(len(yarns) == last[col], f"broken yarns in the last snapshot "
+          f"({files[-1].split('/')[-1]}, {len(sections)} sections), "
+          f"counted from its cells: {len(yarns)} ({sorted(yarns)}), the "
+          f"history's {last[col]:.0f}")
+
+
+if sys.argv[1] == "plies":
+    plies(sys.argv[2], *(float(x) for x in sys.argv[3:6]))
+elif sys.argv[1] == "broken":
+    broken(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]),
+           float(sys.argv[5]), int(sys.argv[6]))
+sys.exit(1 if failures else 0)
