@@ -554,9 +554,8 @@ namespace YarnImpact
         plies << (k > 0 ? "," : "") << " " << patch->ply_height(k) * 1e3;
       plies << " mm (yarn ids " << patch->yarns_per_ply()
             << " per ply, ply 0 first), a gap of "
-            << (g.ply_spacing - 2. * (g.amplitude + g.thickness_semi_axis)) *
-                 1e3
-            << " mm between neighbouring plies' crests";
+            << (g.ply_spacing - WovenPatch::ply_thickness(g)) * 1e3
+            << " mm between neighbouring plies' meshes";
 
       double yarn_length = 0.;
       for (unsigned int id = 0; id < patch->n_yarns(); ++id)

@@ -86,9 +86,11 @@ namespace YarnImpact
                             Double(),
                             "Distance along y between the mid-planes of "
                             "consecutive plies; with several plies, above a "
-                            "ply's thickness, 2 x (Crimp amplitude + "
-                            "Yarn/Thickness semi-axis), so that the plies do "
-                            "not touch at rest [m].");
+                            "ply's meshed thickness, 2 x (Crimp amplitude + "
+                            "the meshed section's semi-thickness, "
+                            "Yarn/Thickness semi-axis scaled to the "
+                            "ellipse's area), so that the plies do not touch "
+                            "at rest [m].");
           prm.declare_entry("Cone deflection threshold",
                             "10e-6",
                             Double(),
@@ -206,12 +208,14 @@ namespace YarnImpact
           require(radius > p.thickness_semi_axis,
                   "Fabric/Crimp amplitude",
                   fold.str());
-          // A ply spans its mid-plane +-(A + a_y), its crests' tops.
-          const double thickness = 2. * (p.amplitude + p.thickness_semi_axis);
+          // A ply's mesh spans its mid-plane +-(A + the meshed section's
+          // semi-thickness), its crests' tops.
+          const double thickness = WovenPatch::ply_thickness(p);
           std::ostringstream plies;
           plies << "= " << p.ply_spacing * 1e3
                 << " mm must exceed a ply's thickness, 2 x (Fabric/Crimp "
-                   "amplitude + Yarn/Thickness semi-axis) = "
+                   "amplitude + the meshed section's semi-thickness, "
+                   "Yarn/Thickness semi-axis scaled to the ellipse's area) = "
                 << thickness * 1e3
                 << " mm, or neighbouring plies overlap at rest";
           require(p.n_plies == 1 || p.ply_spacing > thickness,
@@ -335,6 +339,7 @@ namespace YarnImpact
           WovenPatchGeometry p  = g;
           p.thickness_semi_axis = shared.yarn.thickness_semi_axis;
           p.width_semi_axis     = shared.yarn.width_semi_axis;
+          p.section_refinements = fe.section_refinements;
           return p;
         }
 

@@ -1,3 +1,4 @@
+#include <yarn_impact/core/yarn_section.h>
 #include <yarn_impact/fabric/woven_patch.h>
 
 #include <deal.II/base/numbers.h>
@@ -34,13 +35,12 @@ namespace YarnImpact
         throw std::invalid_argument(
           "WovenPatch: the spacing must exceed the yarn's width, or "
           "neighbouring parallel yarns overlap");
-      // A ply spans its mid-plane +-(A + a_y), the crests' tops.
+      // A ply's mesh spans its mid-plane +-ply_thickness() / 2.
       if (g.n_plies == 0 ||
-          (g.n_plies > 1 &&
-           !(g.ply_spacing > 2. * (g.amplitude + g.thickness_semi_axis))))
+          (g.n_plies > 1 && !(g.ply_spacing > ply_thickness(g))))
         throw std::invalid_argument(
           "WovenPatch: there must be a ply, and the ply spacing must exceed "
-          "a ply's thickness, 2 (A + a_y), or neighbouring plies overlap");
+          "a ply's meshed thickness, or neighbouring plies overlap");
       const double k = numbers::PI / g.spacing;
       for (unsigned int id = 0; id < yarns_per_ply(); ++id)
         {
@@ -67,6 +67,23 @@ namespace YarnImpact
           y.section_refinements = g.section_refinements;
           yarns.emplace_back(y); // throws if it folds
         }
+    }
+
+
+    double
+    WovenPatch::meshed_thickness_semi_axis(const WovenPatchGeometry &geometry)
+    {
+      Triangulation<2> section;
+      create_yarn_section(section,
+                          geometry.thickness_semi_axis,
+                          geometry.width_semi_axis,
+                          geometry.section_refinements,
+                          false,
+                          true);
+      double extent = 0.;
+      for (const Point<2> &v : section.get_vertices())
+        extent = std::max(extent, std::abs(v[0]));
+      return extent;
     }
 
 

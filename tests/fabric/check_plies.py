@@ -6,7 +6,12 @@ Prints one line per check, "ok" or "FAILED", and exits 1 if one failed.
   plies DIR H A AY   a patch of two plies, their mid-planes H [m] apart,
                      crimp amplitude A [m], thickness semi-axis AY [m],
                      struck at the centre by the cylinder, no failure, a
-                     history row at every step:
+                     history row at every step, a snapshot at t = 0:
+    (0) the gap g between the plies at rest, the lowest vertex of the upper
+        ply's mesh above the highest of the lower one's (the first
+        snapshot), positive and at most the ellipses' H - 2 (A + AY) (the
+        meshed section reaches beyond the ellipse by its area-preserving
+        scale), above 0.9 of it;
     (1) the plies' energies: each ply's kinetic and strain energies sum to
         the yarns' kinetic and strain energy columns at every row, within
         1e-9 of them (their 10 digits; reproducible sums of the same
@@ -14,16 +19,17 @@ Prints one line per check, "ok" or "FAILED", and exits 1 if one failed.
     (2) the lower ply is set in motion only through the yarn contact: its
         kinetic and strain energies stay at round-off (below 1e-20 mJ; at
         rest every yarn holds some 1e-27 mJ) until the upper ply can have
-        crossed the gap between them, g = H - 2 (A + AY) (the bottoms of
-        one ply's crossings to the tops of the next's, aligned plies),
-        that is at every row before t_0 + g / (2 v_0), t_0 the first row
+        crossed the gap g between them (the bottoms of one ply's crossings
+        to the tops of the next's, aligned plies), that is at every row
+        before t_0 + g / (2 v_0), t_0 the first row
         with a contact force, v_0 the projectile's initial speed (a light
         body struck elastically by a heavy one leaves at 2 v_0 at most);
     (3) and it moves (kinetic energy above 1e-6 mJ) before the projectile
-        has travelled D = (A + AY) + H - AY / cos(theta), tan(theta) =
-        pi A / S (S the yarn spacing 1 mm): from its start on the crests'
-        tops to the top of the lower ply's warp yarns under its lowest
-        line (x = 0, where their slope is theta), which it cannot pass
+        has travelled D = (A + a) + H - a / cos(theta), tan(theta) =
+        pi A / S (S the yarn spacing 1 mm, a = (H - g) / 2 - A the meshed
+        section's semi-thickness): from its start on the crests' tops to
+        the top of the lower ply's warp yarns under its lowest line
+        (x = 0, where their slope is theta), which it cannot pass
         without the upper ply pressing the lower one; printed with the
         delay after t_0 over g / v_0, the time to cross the gap at the
         projectile's speed.
@@ -86,7 +92,19 @@ def plies(directory, h, a, ay):
     check(ok, f"plies: their kinetic and strain energies sum to the yarns' "
           f"within {worst:.3g} of them (at most 1e-9 plus 1e-15 mJ)")
     v0 = rows[0][V]
-    gap = h - 2 * (a + ay)
+    ellipses = h - 2 * (a + ay)
+    files = sorted(glob.glob(f"{directory}/fe_*.vtu"))
+    if not files:
+        check(False, f"no snapshot in {directory}")
+        return
+    low, high = {}, {}
+    for centre, yarn, ply, failed, damage, lo, hi in read_cells(files[0]):
+        low[ply] = min(low.get(ply, 1.), lo)
+        high[ply] = max(high.get(ply, -1.), hi)
+    gap = low[0] - high[1]
+    check(0.9 * ellipses < gap <= ellipses,
+          f"gap between the plies at rest {1e3 * gap:.4g} mm (the "
+          f"ellipses' {1e3 * ellipses:.4g} mm; within 0.9 to 1 of it)")
     t0 = next(r[T] for r in rows if r[F] != 0.)
     bound = t0 + 1e6 * gap / (2 * v0)
     k1, e1 = cols[1]
@@ -96,7 +114,9 @@ def plies(directory, h, a, ay):
           f"can reach it: gap {1e3 * gap:.4g} mm, first contact at "
           f"{t0:.4g} us, its energies at most {top:.3g} mJ before "
           f"{bound:.4g} us (below 1e-20 mJ)")
-    reach = 1e3 * ((a + ay) + h - ay / math.cos(math.atan(math.pi * a / 1e-3)))
+    # The meshed section's semi-thickness, from the gap.
+    am = 0.5 * (h - gap) - a
+    reach = 1e3 * ((a + am) + h - am / math.cos(math.atan(math.pi * a / 1e-3)))
     moving = next((r for r in rows if r[k1] > 1e-6), None)
     last = rows[-1]
     if moving is None:
@@ -115,7 +135,8 @@ def plies(directory, h, a, ay):
 
 
 def read_cells(path):
-    """Each cell's reference centre, yarn, ply, failed state and damage."""
+    """Each cell's reference centre, yarn, ply, failed state, damage and
+    its vertices' lowest and highest reference y."""
     text = open(path).read()
     res = {}
     for m in re.finditer(r'<DataArray type="(\w+)"([^>]*)format="binary">'
@@ -140,8 +161,9 @@ def read_cells(path):
             for d in range(3):
                 centre[d] += (P[3 * i + d] - U[3 * i + d]) / 8
         i = conn[8 * c]
+        ys = [P[3 * j + 1] - U[3 * j + 1] for j in conn[8 * c:8 * c + 8]]
         cells.append((centre, int(res["yarn"][i]), int(res["ply"][i]),
-                      res["failed"][i], res["damage"][i]))
+                      res["failed"][i], res["damage"][i], min(ys), max(ys)))
     return cells
 
 
@@ -168,7 +190,7 @@ def broken(directory, n_warp, n_weft, s, cps):
         return
     sections = {}
     per_ply = n_warp + n_weft
-    for centre, yarn, ply, failed, damage in read_cells(files[-1]):
+    for centre, yarn, ply, failed, damage, lo, hi in read_cells(files[-1]):
         warp = yarn % per_ply < n_warp
         along = centre[0] if warp else centre[2]
         n = n_weft if warp else n_warp

@@ -30,9 +30,10 @@
 #               histories the same to round-off, and unlike the centred
 #               impact's (check_history.py mirror).
 #  plies        2 plies of 4 x 4 yarns, their mid-planes 0.5 mm apart (a
-#               gap of 0.185 mm), 3.3 us, no failure, a history row at every
-#               step, on 1 and 2 ranks: the checks of energy
-#               (check_history.py energy); the plies' energies summing to
+#               gap of 0.179 mm), 3.3 us, no failure, a history row at every
+#               step, snapshots at 0 and 3.3 us, on 1 and 2 ranks: the
+#               checks of energy (check_history.py energy); the gap between
+#               the plies' meshes at rest; the plies' energies summing to
 #               the yarns', the lower ply still until the upper one can
 #               have crossed the gap, then set moving before the projectile
 #               could pass the upper ply (check_plies.py plies);
@@ -161,6 +162,7 @@ case $case in
     two='subsection Fabric\n  set Plies = 2\n  set Ply spacing = 0.5e-3\nend\n'
     for n in 1 2; do
       patch "plies_$n" 4 4 3.3e-6 1e-9 "$no_failure$two" > "plies_$n.prm"
+      sed -i 's/set Snapshot interval = 0$/set Snapshot interval = 3.3e-6/' "plies_$n.prm"
       run $n "plies_$n.prm"
       [ "$rc" -eq 0 ] || fail "plies on $n ranks: exit $rc: $(head -c 300 stderr)"
     done

@@ -51,8 +51,9 @@ namespace YarnImpact
       unsigned int n_plies = 1;
       /** Distance along y between the mid-planes of consecutive plies
        * [m]: ply p's mid-plane is at y = -p ply_spacing. Used with
-       * n_plies > 1, where it must exceed a ply's thickness, 2 (A + a_y),
-       * so that the plies do not touch at rest. */
+       * n_plies > 1, where it must exceed a ply's meshed thickness
+       * (WovenPatch::ply_thickness), so that the plies do not touch at
+       * rest. */
       double ply_spacing = 0.5e-3;
     };
 
@@ -80,8 +81,8 @@ namespace YarnImpact
      *
      * The yarns must not touch at rest: the constructor refuses
      * A <= a_y (crossing sections overlap), 2 a_z >= s (neighbouring
-     * parallel yarns overlap) and, with several plies, h <= 2 (A + a_y)
-     * (neighbouring plies overlap), as well as a folding crimp
+     * parallel yarns overlap) and, with several plies, h <= ply_thickness()
+     * (neighbouring plies' meshes overlap), as well as a folding crimp
      * (CrimpedYarn).
      */
     class WovenPatch
@@ -90,6 +91,27 @@ namespace YarnImpact
       /** @param geometry the patch; throws std::invalid_argument when the
        * yarns would touch or fold. */
       explicit WovenPatch(const WovenPatchGeometry &geometry);
+
+      /**
+       * The largest distance [m] of a vertex of the meshed section from
+       * its centre along the thickness: the section of
+       * create_yarn_section() with the semi-axes and refinements of
+       * @p geometry, scaled to the ellipse's area, reaches beyond the
+       * thickness semi-axis a_y by that scale (5.4 % with the 12-cell
+       * section).
+       */
+      static double
+      meshed_thickness_semi_axis(const WovenPatchGeometry &geometry);
+
+      /** The thickness [m] of a ply of @p geometry as meshed, 2 (A +
+       * meshed_thickness_semi_axis()): the tops of its crests' sections
+       * (normal to the centreline, which is horizontal there) and the
+       * bottoms of its troughs' bound its vertices, and so its Q1 cells. */
+      static double
+      ply_thickness(const WovenPatchGeometry &geometry)
+      {
+        return 2. * (geometry.amplitude + meshed_thickness_semi_axis(geometry));
+      }
 
       /** The geometry [m, -]. */
       const WovenPatchGeometry &
