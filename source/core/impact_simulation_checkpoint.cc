@@ -53,6 +53,18 @@ namespace YarnImpact
     schedule.load(in);
     projectile.load(in);
     auto rows = History::load_rows(in);
+    // A model's own columns may differ between versions (a column added):
+    // rows of another count would shift the CSV's columns.
+    const std::size_t n_columns = model->extra_column_names().size();
+    for (const auto &row : rows)
+      if (row.model.extra_columns.size() != n_columns)
+        throw InputError("the checkpoint's history rows carry " +
+                         std::to_string(row.model.extra_columns.size()) +
+                         " columns of the " + name +
+                         " model's own, where this program writes " +
+                         std::to_string(n_columns) +
+                         ": it was written by another version of the "
+                         "program; start the run again without --restart.");
     in.tag("loop");
     std::uint64_t n_snapshots = 0;
     in.get(n_snapshots);

@@ -18,6 +18,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <utility>
 
 namespace YarnImpact
@@ -242,6 +243,8 @@ namespace YarnImpact
           std::shared_ptr<const YarnContactForces> yarn_contact,
           const double yarn_length,
           const std::string &primary,
+          const std::string &plies,
+          const unsigned int n_plies,
           const double cone_threshold,
           const double spacing,
           const MPI_Comm communicator)
@@ -250,6 +253,8 @@ namespace YarnImpact
           , yarn_contact(std::move(yarn_contact))
           , yarn_length(yarn_length)
           , primary(primary)
+          , plies(plies)
+          , n_plies(n_plies)
           , cone_threshold(cone_threshold)
           , spacing(spacing)
         {}
@@ -263,6 +268,8 @@ namespace YarnImpact
         setup(const Projectile &projectile, std::ostream &out) override
         {
           fe->setup(projectile, out);
+          if (n_plies > 1)
+            out << "[fabric] " << plies << "\n";
           out << "[fabric] primary yarns (under the projectile at the "
                  "start): "
               << primary << "\n";
@@ -292,18 +299,31 @@ namespace YarnImpact
         {
           fe->drift(dt);
         }
-        /** The FE's, with the fabric's own columns (extra_column_names()). */
+        /** The FE's, with the fabric's own columns (extra_column_names()):
+         * the energy groups are 2 p for the primary yarns of ply p, 2 p +
+         * 1 for its secondary ones; the FE model's one column is the
+         * broken yarns (FE::GivenMesh::section). */
         Observables
         observables() const override
         {
-          Observables o   = fe->observables();
-          o.extra_columns = {o.momentum,
-                             1e3 * yarn_contact->energy(),
-                             1e3 * yarn_contact->dissipated()};
+          Observables o       = fe->observables();
+          const double broken = o.extra_columns.at(0);
+          o.extra_columns     = {o.momentum,
+                                 1e3 * yarn_contact->energy(),
+                                 1e3 * yarn_contact->dissipated()};
+          const auto &kinetic = o.group_kinetic_energy;
+          const auto &strain  = o.group_elastic_energy;
           for (unsigned int g = 0; g < 2; ++g)
             {
-              o.extra_columns.push_back(1e3 * o.group_kinetic_energy[g]);
-              o.extra_columns.push_back(1e3 * o.group_elastic_energy[g]);
+              // Over the plies, ply 0 first (alone with one ply).
+              double k = kinetic[g], e = strain[g];
+              for (unsigned int p = 1; p < n_plies; ++p)
+                {
+                  k += kinetic[2 * p + g];
+                  e += strain[2 * p + g];
+                }
+              o.extra_columns.push_back(1e3 * k);
+              o.extra_columns.push_back(1e3 * e);
             }
           for (const double f :
                yarn_contact->cone_fronts(shared->projectile.offset_x,
@@ -311,6 +331,14 @@ namespace YarnImpact
                                          cone_threshold,
                                          0.5 * spacing))
             o.extra_columns.push_back(1e3 * f);
+          o.extra_columns.push_back(broken);
+          for (unsigned int p = 0; n_plies > 1 && p < n_plies; ++p)
+            {
+              o.extra_columns.push_back(1e3 *
+                                        (kinetic[2 * p] + kinetic[2 * p + 1]));
+              o.extra_columns.push_back(1e3 *
+                                        (strain[2 * p] + strain[2 * p + 1]));
+            }
           return o;
         }
         /** The yarns' momentum along the impact direction, which with the
@@ -321,20 +349,30 @@ namespace YarnImpact
          * of the primary yarns (group 0 of primary_yarns()) and of the
          * secondary ones; the cone's fronts along x, z and the diagonals
          * (YarnContactForces::cone_fronts(), within half a spacing of
-         * each line through the impact point). */
+         * each line through the impact point); the broken yarns [-],
+         * those with a section whose every cell has failed or been
+         * eroded; with several plies, each ply's kinetic and strain
+         * energies [mJ]. */
         std::vector<std::string>
         extra_column_names() const override
         {
-          return {"yarn momentum [kg m/s]",
-                  "yarn contact energy [mJ]",
-                  "yarn contact dissipated energy [mJ]",
-                  "primary yarns kinetic energy [mJ]",
-                  "primary yarns strain energy [mJ]",
-                  "secondary yarns kinetic energy [mJ]",
-                  "secondary yarns strain energy [mJ]",
-                  "cone front along warp [mm]",
-                  "cone front along weft [mm]",
-                  "cone front along diagonal [mm]"};
+          std::vector<std::string> names = {
+            "yarn momentum [kg m/s]",
+            "yarn contact energy [mJ]",
+            "yarn contact dissipated energy [mJ]",
+            "primary yarns kinetic energy [mJ]",
+            "primary yarns strain energy [mJ]",
+            "secondary yarns kinetic energy [mJ]",
+            "secondary yarns strain energy [mJ]",
+            "cone front along warp [mm]",
+            "cone front along weft [mm]",
+            "cone front along diagonal [mm]",
+            "broken yarns"};
+          for (unsigned int p = 0; n_plies > 1 && p < n_plies; ++p)
+            for (const char *e : {"kinetic", "strain"})
+              names.push_back("ply " + std::to_string(p) + " " + e +
+                              " energy [mJ]");
+          return names;
         }
         /** The FE's, with the area of one yarn's section: the patch's mass
          * over its density and its yarns' total length. */
@@ -400,8 +438,11 @@ namespace YarnImpact
         const std::unique_ptr<ImpactModel> fe;
         const std::shared_ptr<const YarnContactForces> yarn_contact;
         const double yarn_length;
-        /** The primary yarns' ids, for the set-up report. */
-        const std::string primary;
+        /** The primary yarns' ids and the plies' heights, for the set-up
+         * report. */
+        const std::string primary, plies;
+        /** Fabric/Plies [-]. */
+        const unsigned int n_plies;
         /** Fabric/Cone deflection threshold [m], Fabric/Yarn spacing [m]. */
         const double cone_threshold, spacing;
       };
@@ -481,19 +522,40 @@ namespace YarnImpact
         make_contact_surface(whole, density, {BoundaryIds::lateral}));
       p.extra_forces = yarn_contact;
 
-      // The energies of the primary and the secondary yarns apart.
+      // The broken yarns, by the sections of each yarn's cells; each
+      // cell's ply in the snapshots.
+      p.mesh.section = [patch](const unsigned int id, const double *xyz) {
+        return patch->section_of(id, dealii::Point<3>(xyz[0], xyz[1], xyz[2]));
+      };
+      p.mesh.sections_per_yarn =
+        std::max(g.n_warp, g.n_weft) * g.cells_per_spacing;
+      p.mesh.n_yarns         = patch->n_yarns();
+      p.mesh.material_fields = {
+        {"ply", [patch](const unsigned int id) { return patch->ply(id); }}};
+
+      // The energies of each ply's primary and secondary yarns apart:
+      // group 2 p + 0 or 1.
       const std::vector<bool> primary =
         primary_yarns(*patch, shared.projectile);
-      p.energy_group = [primary](const unsigned int id) {
-        return primary[id] ? 0u : 1u;
+      p.energy_group = [primary, patch](const unsigned int id) {
+        return 2 * patch->ply(id) + (primary[id] ? 0u : 1u);
       };
-      p.n_energy_groups = 2;
-      std::ostringstream ids;
+      p.n_energy_groups = 2 * g.n_plies;
+      std::ostringstream ids, plies;
       for (unsigned int id = 0; id < patch->n_yarns(); ++id)
         if (primary[id])
           ids << (ids.tellp() > 0 ? ", " : "")
+              << (g.n_plies > 1 ? "ply " + std::to_string(patch->ply(id)) + " "
+                                : "")
               << (patch->is_warp(id) ? "warp " : "weft ")
-              << (patch->is_warp(id) ? id : id - g.n_warp);
+              << patch->index_in_family(id);
+      plies << g.n_plies << " plies, aligned, their mid-planes at y =";
+      for (unsigned int k = 0; k < g.n_plies; ++k)
+        plies << (k > 0 ? "," : "") << " " << patch->ply_height(k) * 1e3;
+      plies << " mm (yarn ids " << patch->yarns_per_ply()
+            << " per ply, ply 0 first), a gap of "
+            << (g.ply_spacing - WovenPatch::ply_thickness(g)) * 1e3
+            << " mm between neighbouring plies' meshes";
 
       double yarn_length = 0.;
       for (unsigned int id = 0; id < patch->n_yarns(); ++id)
@@ -503,6 +565,8 @@ namespace YarnImpact
                                            yarn_contact,
                                            yarn_length,
                                            ids.str(),
+                                           plies.str(),
+                                           g.n_plies,
                                            fabric.cone_threshold,
                                            g.spacing,
                                            communicator);

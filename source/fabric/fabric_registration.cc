@@ -75,6 +75,22 @@ namespace YarnImpact
             "(the edges x = +-Weft yarns x Yarn spacing / 2), weft ends "
             "(the edges z = +-Warp yarns x Yarn spacing / 2) or none (a "
             "free patch); the other ends are free.");
+          prm.declare_entry("Plies",
+                            "1",
+                            Integer(),
+                            "Number of plies: copies of the woven layer "
+                            "stacked along -y, aligned, ply 0 on top, struck "
+                            "first [-].");
+          prm.declare_entry("Ply spacing",
+                            "0.5e-3",
+                            Double(),
+                            "Distance along y between the mid-planes of "
+                            "consecutive plies; with several plies, above a "
+                            "ply's meshed thickness, 2 x (Crimp amplitude + "
+                            "the meshed section's semi-thickness, "
+                            "Yarn/Thickness semi-axis scaled to the "
+                            "ellipse's area), so that the plies do not touch "
+                            "at rest [m].");
           prm.declare_entry("Cone deflection threshold",
                             "10e-6",
                             Double(),
@@ -133,6 +149,8 @@ namespace YarnImpact
           const std::string clamped = prm.get("Clamped edges");
           g.clamp_warp_ends = (clamped == "all" || clamped == "warp ends");
           g.clamp_weft_ends = (clamped == "all" || clamped == "weft ends");
+          g.n_plies         = get_positive_integer(prm, "Fabric", "Plies");
+          g.ply_spacing     = get_positive_double(prm, "Fabric", "Ply spacing");
           fabric.cone_threshold =
             get_positive_double(prm, "Fabric", "Cone deflection threshold");
           prm.enter_subsection("Yarn contact");
@@ -190,6 +208,19 @@ namespace YarnImpact
           require(radius > p.thickness_semi_axis,
                   "Fabric/Crimp amplitude",
                   fold.str());
+          // A ply's mesh spans its mid-plane +-(A + the meshed section's
+          // semi-thickness), its crests' tops.
+          const double thickness = WovenPatch::ply_thickness(p);
+          std::ostringstream plies;
+          plies << "= " << p.ply_spacing * 1e3
+                << " mm must exceed a ply's thickness, 2 x (Fabric/Crimp "
+                   "amplitude + the meshed section's semi-thickness, "
+                   "Yarn/Thickness semi-axis scaled to the ellipse's area) = "
+                << thickness * 1e3
+                << " mm, or neighbouring plies overlap at rest";
+          require(p.n_plies == 1 || p.ply_spacing > thickness,
+                  "Fabric/Ply spacing",
+                  plies.str());
           // The fabric is the whole patch.
           require(shared.general.symmetry ==
                     YarnImpact::Parameters::Symmetry::none,
@@ -273,7 +304,8 @@ namespace YarnImpact
           // long.
           e.n_elements =
             12. * std::pow(4., fe.section_refinements) * p.cells_per_spacing *
-            (p.n_warp * double(p.n_weft) + p.n_weft * double(p.n_warp));
+            (p.n_warp * double(p.n_weft) + p.n_weft * double(p.n_warp)) *
+            p.n_plies;
           e.bytes        = 6.5e3 * e.n_elements;
           e.element_name = "cells";
           e.parameter    = "Fabric/Cells per spacing";
@@ -307,6 +339,7 @@ namespace YarnImpact
           WovenPatchGeometry p  = g;
           p.thickness_semi_axis = shared.yarn.thickness_semi_axis;
           p.width_semi_axis     = shared.yarn.width_semi_axis;
+          p.section_refinements = fe.section_refinements;
           return p;
         }
 

@@ -1,3 +1,4 @@
+#include <yarn_impact/core/yarn_section.h>
 #include <yarn_impact/fabric/woven_patch.h>
 
 #include <deal.II/base/numbers.h>
@@ -5,6 +6,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -33,8 +35,14 @@ namespace YarnImpact
         throw std::invalid_argument(
           "WovenPatch: the spacing must exceed the yarn's width, or "
           "neighbouring parallel yarns overlap");
+      // A ply's mesh spans its mid-plane +-ply_thickness() / 2.
+      if (g.n_plies == 0 ||
+          (g.n_plies > 1 && !(g.ply_spacing > ply_thickness(g))))
+        throw std::invalid_argument(
+          "WovenPatch: there must be a ply, and the ply spacing must exceed "
+          "a ply's meshed thickness, or neighbouring plies overlap");
       const double k = numbers::PI / g.spacing;
-      for (unsigned int id = 0; id < n_yarns(); ++id)
+      for (unsigned int id = 0; id < yarns_per_ply(); ++id)
         {
           const bool warp      = is_warp(id);
           const unsigned int n = warp ? g.n_weft : g.n_warp;
@@ -62,21 +70,56 @@ namespace YarnImpact
     }
 
 
+    double
+    WovenPatch::meshed_thickness_semi_axis(const WovenPatchGeometry &geometry)
+    {
+      Triangulation<2> section;
+      create_yarn_section(section,
+                          geometry.thickness_semi_axis,
+                          geometry.width_semi_axis,
+                          geometry.section_refinements,
+                          false,
+                          true);
+      double extent = 0.;
+      for (const Point<2> &v : section.get_vertices())
+        extent = std::max(extent, std::abs(v[0]));
+      return extent;
+    }
+
+
     Point<3>
     WovenPatch::to_yarn_frame(const unsigned int id, const Point<3> &X) const
     {
       // Warp: shifted across by z_i. Weft: turned about y, its own x the
       // patch's z and its own z the patch's -x, shifted by x_j (a
-      // rotation, so that the cells keep their orientation).
-      return is_warp(id) ? Point<3>(X[0], X[1], X[2] - offset[id])
-                         : Point<3>(X[2], X[1], offset[id] - X[0]);
+      // rotation, so that the cells keep their orientation). Both
+      // shifted up by their ply's depth (ply 0's y untouched, bit for
+      // bit).
+      const unsigned int p = ply(id);
+      const double y       = p == 0 ? X[1] : X[1] - ply_height(p);
+      const double o       = position(id);
+      return is_warp(id) ? Point<3>(X[0], y, X[2] - o)
+                         : Point<3>(X[2], y, o - X[0]);
+    }
+
+
+    unsigned int
+    WovenPatch::section_of(const unsigned int id, const Point<3> &X) const
+    {
+      const CrimpedYarn &y          = yarn(id);
+      const CrimpedYarnGeometry &yg = y.geometry();
+      const double s                = y.abscissa_of(to_yarn_frame(id, X));
+      const double k =
+        std::floor((s - yg.x_begin) / (yg.x_end - yg.x_begin) * yg.n_cells);
+      return static_cast<unsigned int>(
+        std::clamp(k, 0., static_cast<double>(yg.n_cells - 1)));
     }
 
 
     double
     WovenPatch::section_radius(const unsigned int id, const Point<3> &X) const
     {
-      const CrimpedYarn &y          = yarns[id];
+      const CrimpedYarn &y          = yarn(id);
       const Point<3> P              = to_yarn_frame(id, X);
       const double s                = y.abscissa_of(P);
       const CrimpedYarnGeometry &yg = y.geometry();
@@ -92,9 +135,16 @@ namespace YarnImpact
     unsigned int
     WovenPatch::yarn_of(const Point<3> &X) const
     {
-      unsigned int best = 0;
-      double smallest   = std::numeric_limits<double>::max();
-      for (unsigned int id = 0; id < n_yarns(); ++id)
+      // The plies are more than their thickness apart: a point of a yarn
+      // lies within half a spacing of its ply's mid-plane.
+      const double p =
+        g.n_plies == 1
+          ? 0.
+          : std::clamp(std::round(-X[1] / g.ply_spacing), 0., g.n_plies - 1.);
+      const unsigned int first = static_cast<unsigned int>(p) * yarns_per_ply();
+      unsigned int best        = first;
+      double smallest          = std::numeric_limits<double>::max();
+      for (unsigned int id = first; id < first + yarns_per_ply(); ++id)
         {
           const double r = section_radius(id, X);
           if (r < smallest)
@@ -111,7 +161,7 @@ namespace YarnImpact
     WovenPatch::fibre_direction(const Point<3> &X) const
     {
       const unsigned int id = yarn_of(X);
-      const Tensor<1, 3> t  = yarns[id].fibre_direction(to_yarn_frame(id, X));
+      const Tensor<1, 3> t  = yarn(id).fibre_direction(to_yarn_frame(id, X));
       if (is_warp(id))
         return t;
       Tensor<1, 3> T; // the weft's own x is the patch's z
@@ -129,13 +179,16 @@ namespace YarnImpact
       std::vector<const Triangulation<3> *> pointers;
       for (unsigned int id = 0; id < n_yarns(); ++id)
         {
-          yarns[id].create_mesh(parts[id]);
-          const double o  = offset[id];
-          const bool warp = is_warp(id);
+          yarn(id).create_mesh(parts[id]);
+          const double o     = position(id);
+          const bool warp    = is_warp(id);
+          const bool shifted = ply(id) > 0;
+          const double h     = ply_height(ply(id));
           GridTools::transform(
-            [o, warp](const Point<3> &p) {
-              return warp ? Point<3>(p[0], p[1], p[2] + o)
-                          : Point<3>(o - p[2], p[1], p[0]);
+            [o, warp, shifted, h](const Point<3> &p) {
+              const double y = shifted ? p[1] + h : p[1];
+              return warp ? Point<3>(p[0], y, p[2] + o)
+                          : Point<3>(o - p[2], y, p[0]);
             },
             parts[id]);
           for (const auto &cell : parts[id].active_cell_iterators())
@@ -153,9 +206,9 @@ namespace YarnImpact
           if (face->at_boundary())
             {
               const unsigned int id        = cell->material_id();
-              const CrimpedYarnGeometry &y = yarns[id].geometry();
+              const CrimpedYarnGeometry &y = yarn(id).geometry();
               const double s =
-                yarns[id].abscissa_of(to_yarn_frame(id, face->center()));
+                yarn(id).abscissa_of(to_yarn_frame(id, face->center()));
               const double tol = 1e-6 * g.spacing / g.cells_per_spacing;
               const bool clamped =
                 is_warp(id) ? g.clamp_warp_ends : g.clamp_weft_ends;

@@ -219,7 +219,35 @@ namespace YarnImpact
       // is collective: the counts are the same on every rank).
       o.cut_through = (o.n_failed > 0 || o.n_eroded > 0) &&
                       !parameters.mesh.given() && yarn_cut_through();
+      // The counts are the same on every rank: all or none count.
+      if (parameters.mesh.section)
+        o.extra_columns = {
+          double(o.n_failed > 0 || o.n_eroded > 0 ? broken_yarns() : 0)};
       return o;
+    }
+
+
+    template <class Law>
+    unsigned int
+    YarnModel<Law>::broken_yarns() const
+    {
+      // Failed cells per section, summed over the ranks (integers: the
+      // same on every rank whatever the partition).
+      std::vector<unsigned int> failed(section_cells.size(), 0);
+      for (const unsigned int c : owned_cells)
+        if (cells.failed[c] != CellState::active || cells.damage[c] >= 1.)
+          ++failed[cell_section[c]];
+      Utilities::MPI::sum(failed, communicator, failed);
+      const unsigned int per_yarn = parameters.mesh.sections_per_yarn;
+      unsigned int broken         = 0;
+      for (unsigned int y = 0; y < parameters.mesh.n_yarns; ++y)
+        for (unsigned int k = y * per_yarn; k < (y + 1) * per_yarn; ++k)
+          if (section_cells[k] > 0 && failed[k] == section_cells[k])
+            {
+              ++broken;
+              break;
+            }
+      return broken;
     }
 
 
@@ -355,14 +383,19 @@ namespace YarnImpact
                                  DataOut<3>::type_cell_data);
       // On a given mesh of several yarns: each cell's yarn and its mean
       // fibre direction in the reference configuration.
-      const char *mesh_names[] = {"yarn",
-                                  "fibre_direction_x",
-                                  "fibre_direction_y",
-                                  "fibre_direction_z"};
+      // Then the fields of GivenMesh::material_fields after `yarn`.
+      std::vector<std::string> mesh_names = {"yarn",
+                                             "fibre_direction_x",
+                                             "fibre_direction_y",
+                                             "fibre_direction_z"};
+      const auto &material_fields         = parameters.mesh.material_fields;
+      const unsigned int n_extra          = material_fields.size();
+      for (unsigned int k = 0; k < n_extra; ++k)
+        mesh_names.insert(mesh_names.begin() + 1 + k, material_fields[k].first);
       std::vector<Vector<float>> mesh_fields;
       if (parameters.mesh.given())
         {
-          mesh_fields.assign(4, Vector<float>(n_cells));
+          mesh_fields.assign(mesh_names.size(), Vector<float>(n_cells));
           std::vector<unsigned int> yarn(n_cells, 0);
           for (const auto &cell : tria.active_cell_iterators())
             yarn[cell->active_cell_index()] = cell->material_id();
@@ -370,10 +403,12 @@ namespace YarnImpact
             {
               const unsigned int id = cell_index[c];
               mesh_fields[0][id]    = yarn[id];
+              for (unsigned int k = 0; k < n_extra; ++k)
+                mesh_fields[1 + k][id] = material_fields[k].second(yarn[id]);
               for (unsigned int d = 0; d < 3; ++d)
-                mesh_fields[1 + d][id] = cell_fibre[c][d];
+                mesh_fields[1 + n_extra + d][id] = cell_fibre[c][d];
             }
-          for (unsigned int k = 0; k < 4; ++k)
+          for (unsigned int k = 0; k < mesh_names.size(); ++k)
             data_out.add_data_vector(mesh_fields[k],
                                      mesh_names[k],
                                      DataOut<3>::type_cell_data);
@@ -413,6 +448,7 @@ namespace YarnImpact
     // instantiated by create_model()).
 #define YARN_IMPACT_FE_INSTANTIATE(type, Law, member)                      \
   template Observables YarnModel<Law>::observables() const;                \
+  template unsigned int YarnModel<Law>::broken_yarns() const;              \
   template std::string YarnModel<Law>::write_snapshot(const std::string &, \
                                                       const unsigned int,  \
                                                       const double) const;

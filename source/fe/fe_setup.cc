@@ -164,6 +164,18 @@ namespace YarnImpact
             owned_cells.push_back(cell_index.size());
           if (parameters.energy_group)
             cell_group.push_back(parameters.energy_group(cell->material_id()));
+          if (parameters.mesh.section)
+            {
+              const Point<3> X     = cell->center();
+              const unsigned int m = cell->material_id();
+              const unsigned int k = parameters.mesh.section(m, &X[0]);
+              AssertThrow(m < parameters.mesh.n_yarns &&
+                            k < parameters.mesh.sections_per_yarn,
+                          ExcMessage("FE set-up: a cell's yarn or section is "
+                                     "beyond GivenMesh::n_yarns or "
+                                     "sections_per_yarn"));
+              cell_section.push_back(m * parameters.mesh.sections_per_yarn + k);
+            }
           fe_values.reinit(typename Triangulation<3>::cell_iterator(cell));
           cell_index.push_back(cell->active_cell_index());
           // The continuum weight of the cell's layer (a hybrid's part).
@@ -178,6 +190,16 @@ namespace YarnImpact
           add_cell_quadrature(fe_values, weight);
           add_cell_geometry(cell, fe_values);
           add_lateral_area(cell, fe_face_values, area);
+        }
+      if (parameters.mesh.section)
+        {
+          // Every section's cells over all ranks, for broken_yarns().
+          section_cells.assign(parameters.mesh.n_yarns *
+                                 parameters.mesh.sections_per_yarn,
+                               0);
+          for (const unsigned int c : owned_cells)
+            ++section_cells[cell_section[c]];
+          Utilities::MPI::sum(section_cells, communicator, section_cells);
         }
       // The ghost entries hold partial sums: only the owned ones are used.
       lumped_mass.zero_out_ghost_values();

@@ -99,9 +99,21 @@ namespace YarnImpact
       drift(const double dt) override;
 
       /** Energies [J], strains, failed cells, cut-through and the station
-       * profile of the whole yarn. Collective. */
+       * profile of the whole yarn; on a given mesh with sections
+       * (GivenMesh::section), the broken yarns as its one extra column.
+       * Collective. */
       Observables
       observables() const override;
+
+      /** `broken yarns` on a given mesh with sections
+       * (GivenMesh::section), none otherwise. */
+      std::vector<std::string>
+      extra_column_names() const override
+      {
+        if (parameters.mesh.section)
+          return {"broken yarns"};
+        return {};
+      }
 
       /** Density, area and axial law of the discretised yarn (Smith). */
       AxialProperties
@@ -307,6 +319,12 @@ namespace YarnImpact
       bool
       yarn_cut_through() const;
 
+      /** On a given mesh with sections (GivenMesh::section): the yarns
+       * [-] with a section whose every cell has failed (broken or fully
+       * damaged) or been eroded, the same on every rank. Collective. */
+      unsigned int
+      broken_yarns() const;
+
       /** Current positions [m] of the 8 vertices of cell c. */
       void
       vertex_positions(const unsigned int c, double (&p)[n_nodes][3]) const;
@@ -348,6 +366,11 @@ namespace YarnImpact
       /** The energy group of each cell and of each owned node
        * (Parameters::energy_group); empty without groups. */
       std::vector<unsigned int> cell_group, node_group;
+      /** On a given mesh with sections (GivenMesh::section): each cell's
+       * section over the whole mesh, material id x sections_per_yarn +
+       * its section, and every section's number of cells over all ranks;
+       * empty otherwise. */
+      std::vector<unsigned int> cell_section, section_cells;
       /** The failure law of the force loop (make_failure_law() of
        * Yarn/Failure, Failure strain and the FE's FailureParameters). */
       FailureLaw failure_law;

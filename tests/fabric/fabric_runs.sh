@@ -29,6 +29,21 @@
 #               x, z): the balances of energy at (0.25, 0.125); the two
 #               histories the same to round-off, and unlike the centred
 #               impact's (check_history.py mirror).
+#  plies        2 plies of 4 x 4 yarns, their mid-planes 0.5 mm apart (a
+#               gap of 0.179 mm), 3.3 us, no failure, a history row at every
+#               step, snapshots at 0 and 3.3 us, on 1 and 2 ranks: the
+#               checks of energy (check_history.py energy); the gap between
+#               the plies' meshes at rest; the plies' energies summing to
+#               the yarns', the lower ply still until the upper one can
+#               have crossed the gap, then set moving before the projectile
+#               could pass the upper ply (check_plies.py plies);
+#               the two histories byte for byte the same.
+#  broken       4 x 4 yarns, Yarn/Failure strain 2 %, sudden failure,
+#               3 us, a snapshot at the end, on 1 and 2 ranks: the
+#               history's broken yarns 0 before any cell fails, above 0 by
+#               the end, the count of the last snapshot's cells
+#               (check_plies.py broken); the two histories byte for byte
+#               the same.
 #  ranks        4 x 4 yarns, 3.5 us, failure on: the Charmetant law with
 #               sudden and with progressive failure, the linear law with
 #               sudden failure (progressive needs Charmetant): the
@@ -142,6 +157,37 @@ case $case in
     done
     /usr/bin/python3 "$here/check_history.py" energy plus || failures=$((failures + 1))
     /usr/bin/python3 "$here/check_history.py" mirror plus minus centre || failures=$((failures + 1))
+    ;;
+  plies)
+    two='subsection Fabric\n  set Plies = 2\n  set Ply spacing = 0.5e-3\nend\n'
+    for n in 1 2; do
+      patch "plies_$n" 4 4 3.3e-6 1e-9 "$no_failure$two" > "plies_$n.prm"
+      sed -i 's/set Snapshot interval = 0$/set Snapshot interval = 3.3e-6/' "plies_$n.prm"
+      run $n "plies_$n.prm"
+      [ "$rc" -eq 0 ] || fail "plies on $n ranks: exit $rc: $(head -c 300 stderr)"
+    done
+    /usr/bin/python3 "$here/check_history.py" energy plies_1 || failures=$((failures + 1))
+    /usr/bin/python3 "$here/check_plies.py" plies plies_1 0.5e-3 0.1e-3 0.0575e-3 || failures=$((failures + 1))
+    if cmp -s plies_1/history_fabric.csv plies_2/history_fabric.csv; then
+      echo "ok     plies: the history on 2 ranks is the one on 1 rank, byte for byte"
+    else
+      fail "plies: the history on 2 ranks differs from the one on 1 rank"
+    fi
+    ;;
+  broken)
+    weak='subsection Yarn\n  set Failure model = sudden\n  set Failure strain = 0.02\nend\n'
+    for n in 1 2; do
+      patch "broken_$n" 4 4 3e-6 0.1e-6 "$weak" > "broken_$n.prm"
+      sed -i 's/set Snapshot interval = 0$/set Snapshot interval = 3e-6/' "broken_$n.prm"
+      run $n "broken_$n.prm"
+      [ "$rc" -eq 0 ] || fail "broken on $n ranks: exit $rc: $(head -c 300 stderr)"
+    done
+    /usr/bin/python3 "$here/check_plies.py" broken broken_1 4 4 1e-3 8 || failures=$((failures + 1))
+    if cmp -s broken_1/history_fabric.csv broken_2/history_fabric.csv; then
+      echo "ok     broken: the history on 2 ranks is the one on 1 rank, byte for byte"
+    else
+      fail "broken: the history on 2 ranks differs from the one on 1 rank"
+    fi
     ;;
   ranks)
     for law in charmetant progressive linear; do

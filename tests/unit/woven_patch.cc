@@ -10,7 +10,14 @@
 // plain weave); the fibre direction at every Gauss point is unit, in its
 // yarn's vertical plane (no component across it), and the tangent of its
 // yarn. Yarns that would touch (A <= a_y, or a spacing not above the
-// width) are refused.
+// width) are refused. Three plies of it, h = 0.5 mm apart: 3 x 768 cells,
+// each cell's material id the yarn found by point location, ply p's yarn
+// ids p (n_warp + n_weft) to (p + 1) (n_warp + n_weft) - 1, 12 cells in
+// every section of every yarn (section_of), and the gap between
+// consecutive plies' vertices h - ply_thickness(), 2 (A + a_y) with a_y
+// scaled by the section's area-preserving factor (h - 2 (A + a_y) =
+// 0.185 mm of the ellipses); plies whose meshes would touch
+// (h = ply_thickness()) are refused.
 
 #include <yarn_impact/fabric/woven_patch.h>
 
@@ -136,4 +143,58 @@ main()
   std::printf("refused: A = a_y %s, spacing = 2 a_z %s\n",
               refused(touching) ? "OK" : "WRONG",
               refused(crowded) ? "OK" : "WRONG");
+
+  // Three plies.
+  Fabric::WovenPatchGeometry stacked = g;
+  stacked.n_plies                    = 3;
+  stacked.ply_spacing                = 0.5e-3;
+  const Fabric::WovenPatch plies(stacked);
+  dealii::Triangulation<3> stack;
+  plies.create_mesh(stack);
+  const unsigned int per_ply = plies.yarns_per_ply();
+  unsigned int wrong_ply_id  = 0;
+  std::vector<unsigned int> section_cells(plies.n_yarns() * 16, 0);
+  for (const auto &cell : stack.active_cell_iterators())
+    {
+      const unsigned int id = cell->material_id();
+      const Point<3> c      = cell->center();
+      if (plies.yarn_of(c) != id || plies.ply(id) != id / per_ply ||
+          std::abs(c[1] - plies.ply_height(plies.ply(id))) >
+            g.amplitude + g.thickness_semi_axis)
+        ++wrong_ply_id;
+      ++section_cells[id * 16 + plies.section_of(id, c)];
+    }
+  const bool sections = std::all_of(section_cells.begin(),
+                                    section_cells.end(),
+                                    [](unsigned n) { return n == 12; });
+  // Each ply's lowest and highest vertex.
+  std::vector<double> low(3, 1.), high(3, -1.);
+  for (const auto &cell : stack.active_cell_iterators())
+    for (const unsigned int v : cell->vertex_indices())
+      {
+        const unsigned int p = plies.ply(cell->material_id());
+        low[p]               = std::min(low[p], cell->vertex(v)[1]);
+        high[p]              = std::max(high[p], cell->vertex(v)[1]);
+      }
+  const double gap =
+    stacked.ply_spacing - Fabric::WovenPatch::ply_thickness(stacked);
+  double worst_gap = 0.;
+  for (unsigned int p = 0; p + 1 < 3; ++p)
+    worst_gap = std::max(worst_gap, std::abs(low[p] - high[p + 1] - gap));
+  Fabric::WovenPatchGeometry touching_plies = stacked;
+  touching_plies.ply_spacing = Fabric::WovenPatch::ply_thickness(stacked);
+  std::printf("3 plies: cells %u (2304), vertices %u (3468); material id = "
+              "yarn found by point location, in its ply: %s; 12 cells in "
+              "each of the %zu sections: %s; gap between plies %.4f mm "
+              "(h - ply_thickness() %.4f mm): %s; refused: h = "
+              "ply_thickness() %s\n",
+              stack.n_active_cells(),
+              stack.n_vertices(),
+              wrong_ply_id == 0 ? "OK" : "WRONG",
+              section_cells.size(),
+              sections ? "OK" : "WRONG",
+              (low[0] - high[1]) * 1e3,
+              gap * 1e3,
+              worst_gap < 1e-12 ? "OK" : "WRONG",
+              refused(touching_plies) ? "OK" : "WRONG");
 }

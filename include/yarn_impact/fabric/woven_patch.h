@@ -45,6 +45,16 @@ namespace YarnImpact
       /** Whether the two end sections of every weft yarn (the patch's
        * edges z = +-n_warp s / 2) are clamped; free ends otherwise. */
       bool clamp_weft_ends = true;
+      /** Plies [-]: copies of the woven layer stacked along -y, aligned
+       * (each the layer shifted along y only), ply 0 on top (its
+       * mid-plane y = 0), struck first. */
+      unsigned int n_plies = 1;
+      /** Distance along y between the mid-planes of consecutive plies
+       * [m]: ply p's mid-plane is at y = -p ply_spacing. Used with
+       * n_plies > 1, where it must exceed a ply's meshed thickness
+       * (WovenPatch::ply_thickness), so that the plies do not touch at
+       * rest. */
+      double ply_spacing = 0.5e-3;
     };
 
     /** The boundary id of the end sections of a yarn whose ends are free
@@ -63,12 +73,17 @@ namespace YarnImpact
      * after the last. Warp i's centreline is y = A cos(pi (x - x_0)/s +
      * i pi), weft j's y = -A cos(pi (z - z_0)/s + j pi): at every crossing
      * one yarn passes over (+A) and the other under (-A), alternately
-     * along each yarn, the plain weave. Yarn ids: warp i is i, weft j is
-     * n_warp + j.
+     * along each yarn, the plain weave. With several plies
+     * (WovenPatchGeometry::n_plies) the layer is repeated along -y, ply p
+     * shifted by -p h (h the ply spacing), the plies aligned. Yarn ids:
+     * warp i of ply p is p (n_warp + n_weft) + i, weft j of ply p is
+     * p (n_warp + n_weft) + n_warp + j.
      *
      * The yarns must not touch at rest: the constructor refuses
-     * A <= a_y (crossing sections overlap) and 2 a_z >= s (neighbouring
-     * parallel yarns overlap), as well as a folding crimp (CrimpedYarn).
+     * A <= a_y (crossing sections overlap), 2 a_z >= s (neighbouring
+     * parallel yarns overlap) and, with several plies, h <= ply_thickness()
+     * (neighbouring plies' meshes overlap), as well as a folding crimp
+     * (CrimpedYarn).
      */
     class WovenPatch
     {
@@ -77,6 +92,27 @@ namespace YarnImpact
        * yarns would touch or fold. */
       explicit WovenPatch(const WovenPatchGeometry &geometry);
 
+      /**
+       * The largest distance [m] of a vertex of the meshed section from
+       * its centre along the thickness: the section of
+       * create_yarn_section() with the semi-axes and refinements of
+       * @p geometry, scaled to the ellipse's area, reaches beyond the
+       * thickness semi-axis a_y by that scale (5.4 % with the 12-cell
+       * section).
+       */
+      static double
+      meshed_thickness_semi_axis(const WovenPatchGeometry &geometry);
+
+      /** The thickness [m] of a ply of @p geometry as meshed, 2 (A +
+       * meshed_thickness_semi_axis()): the tops of its crests' sections
+       * (normal to the centreline, which is horizontal there) and the
+       * bottoms of its troughs' bound its vertices, and so its Q1 cells. */
+      static double
+      ply_thickness(const WovenPatchGeometry &geometry)
+      {
+        return 2. * (geometry.amplitude + meshed_thickness_semi_axis(geometry));
+      }
+
       /** The geometry [m, -]. */
       const WovenPatchGeometry &
       geometry() const
@@ -84,26 +120,58 @@ namespace YarnImpact
         return g;
       }
 
-      /** Number of yarns [-], warp then weft. */
+      /** Number of yarns of a ply [-], warp then weft. */
+      unsigned int
+      yarns_per_ply() const
+      {
+        return g.n_warp + g.n_weft;
+      }
+
+      /** Number of yarns [-], ply after ply. */
       unsigned int
       n_yarns() const
       {
-        return g.n_warp + g.n_weft;
+        return g.n_plies * yarns_per_ply();
+      }
+
+      /** The ply [-] of the yarn @p id, 0 on top. */
+      unsigned int
+      ply(const unsigned int id) const
+      {
+        return id / yarns_per_ply();
+      }
+
+      /** The height [m] of the mid-plane of ply @p p: -p times the ply
+       * spacing (+0 for ply 0). */
+      double
+      ply_height(const unsigned int p) const
+      {
+        return p == 0 ? 0. : -(p * g.ply_spacing);
       }
 
       /** Whether the yarn @p id is a warp yarn (along x). */
       bool
       is_warp(const unsigned int id) const
       {
-        return id < g.n_warp;
+        return id % yarns_per_ply() < g.n_warp;
+      }
+
+      /** The number [-] of the yarn @p id among its ply's warp yarns (i)
+       * or weft yarns (j). */
+      unsigned int
+      index_in_family(const unsigned int id) const
+      {
+        const unsigned int k = id % yarns_per_ply();
+        return k < g.n_warp ? k : k - g.n_warp;
       }
 
       /** Yarn @p id in its own frame: its centreline along its local x
-       * (the global x of a warp yarn, the global z of a weft yarn). */
+       * (the global x of a warp yarn, the global z of a weft yarn), its
+       * ply's mid-plane at y = 0. */
       const CrimpedYarn &
       yarn(const unsigned int id) const
       {
-        return yarns[id];
+        return yarns[id % yarns_per_ply()];
       }
 
       /** The position [m] of yarn @p id across its axis in the fabric's
@@ -111,11 +179,19 @@ namespace YarnImpact
       double
       position(const unsigned int id) const
       {
-        return offset[id];
+        return offset[id % yarns_per_ply()];
       }
 
+      /** The section [-] of yarn @p id through the reference point @p X
+       * [m]: the station interval, 0 to yarn(id).geometry().n_cells - 1,
+       * of the abscissa of its section (a layer of cells across the
+       * yarn). */
+      unsigned int
+      section_of(const unsigned int id, const dealii::Point<3> &X) const;
+
       /** The point @p X [m] of the patch in the own frame of yarn @p id
-       * [m], where that yarn is a CrimpedYarn centred on z = 0. */
+       * [m], where that yarn is a CrimpedYarn centred on z = 0, its ply's
+       * mid-plane at y = 0. */
       dealii::Point<3>
       to_yarn_frame(const unsigned int id, const dealii::Point<3> &X) const;
 
@@ -127,7 +203,8 @@ namespace YarnImpact
       section_radius(const unsigned int id, const dealii::Point<3> &X) const;
 
       /** The yarn that holds @p X [m]: the one of smallest
-       * section_radius() [-]. */
+       * section_radius() [-] among the yarns of the ply whose mid-plane
+       * is nearest @p X (the plies do not touch). */
       unsigned int
       yarn_of(const dealii::Point<3> &X) const;
 
@@ -138,7 +215,7 @@ namespace YarnImpact
       fibre_direction(const dealii::Point<3> &X) const;
 
       /** The mesh: every yarn's CrimpedYarn::create_mesh, placed and
-       * turned into the patch, merged into one triangulation with no
+       * turned into its ply, merged into one triangulation with no
        * shared vertex; each cell's material id is its yarn's id, the
        * boundary ids those of BoundaryIds (lateral, end), the end sections
        * of a yarn with free ends free_end_boundary_id. */
@@ -147,9 +224,10 @@ namespace YarnImpact
 
     private:
       WovenPatchGeometry g;
+      /** The yarns of one ply, warp then weft. */
       std::vector<CrimpedYarn> yarns;
-      /** The offset [m] of each yarn across its own axis in the fabric's
-       * plane: z_i of warp i, x_j of weft j. */
+      /** The offset [m] of each yarn of a ply across its own axis in the
+       * fabric's plane: z_i of warp i, x_j of weft j. */
       std::vector<double> offset;
     };
   } // namespace Fabric

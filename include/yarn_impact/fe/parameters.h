@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dealii
@@ -42,6 +43,25 @@ namespace YarnImpact
        * section's normal: it places a cell's depth below the struck face
        * (CellData::depth). */
       std::function<double(const double *)> section_height;
+      /** The section [-], below sections_per_yarn, of the cell of
+       * material id m (the first argument, its yarn) whose reference
+       * centre is X [m] (the second, 3 values): the layer of cells across
+       * its yarn at one station along its centreline. With it the FE
+       * model counts the broken yarns, the material ids below n_yarns
+       * with a section whose every cell has failed (broken or fully
+       * damaged) or been eroded, and gives the count as its one own
+       * history column, `broken yarns` (ImpactModel::extra_column_names).
+       * Empty: no count, no column. */
+      std::function<unsigned int(unsigned int, const double *)> section;
+      /** Sections of a yarn, at most [-] (section). */
+      unsigned int sections_per_yarn = 0;
+      /** Yarns [-]: the material ids are 0 to n_yarns - 1 (section). */
+      unsigned int n_yarns = 0;
+      /** Cell fields of the snapshots beside `yarn` (the material id):
+       * each a name and the value [-] of the cells of a material id, the
+       * argument. None by default. */
+      std::vector<std::pair<std::string, std::function<double(unsigned int)>>>
+        material_fields;
 
       /** Whether a mesh is given. */
       bool
