@@ -63,13 +63,8 @@ exe=$1
 src=$2
 case=$3
 here=$(cd "$(dirname "$0")" && pwd)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-failures=0
-fail() { echo "FAILED $1"; failures=$((failures + 1)); }
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 
 # patch DIR WARP WEFT END_TIME HISTORY_INTERVAL [TEXT]: the example's
 # yarns, WARP x WEFT of them, no snapshots.
@@ -168,7 +163,7 @@ case $case in
     done
     /usr/bin/python3 "$here/check_history.py" energy plies_1 || failures=$((failures + 1))
     /usr/bin/python3 "$here/check_plies.py" plies plies_1 0.5e-3 0.1e-3 0.0575e-3 || failures=$((failures + 1))
-    if cmp -s plies_1/history_fabric.csv plies_2/history_fabric.csv; then
+    if same_history plies_1/history_fabric.csv plies_2/history_fabric.csv; then
       echo "ok     plies: the history on 2 ranks is the one on 1 rank, byte for byte"
     else
       fail "plies: the history on 2 ranks differs from the one on 1 rank"
@@ -183,7 +178,7 @@ case $case in
       [ "$rc" -eq 0 ] || fail "broken on $n ranks: exit $rc: $(head -c 300 stderr)"
     done
     /usr/bin/python3 "$here/check_plies.py" broken broken_1 4 4 1e-3 8 || failures=$((failures + 1))
-    if cmp -s broken_1/history_fabric.csv broken_2/history_fabric.csv; then
+    if same_history broken_1/history_fabric.csv broken_2/history_fabric.csv; then
       echo "ok     broken: the history on 2 ranks is the one on 1 rank, byte for byte"
     else
       fail "broken: the history on 2 ranks differs from the one on 1 rank"
@@ -203,7 +198,7 @@ case $case in
         "${law}_1/history_fabric.csv" ||
         fail "$law: no failed cell by 3.5 us (the case no longer tests failure across ranks)"
       for n in 2 3; do
-        if cmp -s "${law}_1/history_fabric.csv" "${law}_$n/history_fabric.csv"; then
+        if same_history "${law}_1/history_fabric.csv" "${law}_$n/history_fabric.csv"; then
           echo "ok     $law: the history on $n ranks is the one on 1 rank, byte for byte"
         else
           fail "$law: the history on $n ranks differs from the one on 1 rank"
@@ -224,7 +219,7 @@ case $case in
       ls "cut_$n" | grep -q '^checkpoint_fabric' || fail "stop on $n ranks: no checkpoint"
       run $n --restart "cut_$n.prm"
       [ "$rc" -eq 0 ] || fail "restart on $n ranks: exit $rc: $(head -c 300 stderr)"
-      if cmp -s "ref_$n/history_fabric.csv" "cut_$n/history_fabric.csv"; then
+      if same_history "ref_$n/history_fabric.csv" "cut_$n/history_fabric.csv"; then
         echo "ok     restart on $n ranks: the history is the uninterrupted run's, byte for byte"
       else
         fail "restart on $n ranks: the history differs from the uninterrupted run's"
@@ -257,7 +252,7 @@ case $case in
     done
     /usr/bin/python3 "$here/check_history.py" energy sphere_1 || failures=$((failures + 1))
     /usr/bin/python3 "$here/check_symmetry.py" sphere_1 || failures=$((failures + 1))
-    if cmp -s sphere_1/history_fabric.csv sphere_2/history_fabric.csv; then
+    if same_history sphere_1/history_fabric.csv sphere_2/history_fabric.csv; then
       echo "ok     sphere: the history on 2 ranks is the one on 1 rank, byte for byte"
     else
       fail "sphere: the history on 2 ranks differs from the one on 1 rank"
@@ -268,4 +263,4 @@ case $case in
     exit 2
     ;;
 esac
-[ $failures -eq 0 ]
+test_end
