@@ -33,7 +33,9 @@ namespace YarnImpact
       public:
         /** Negate the patches' x coordinates and their data rows
          * @p odd_rows (the components odd under the reflection: x of a
-         * vector, the xy and xz shear stresses) [-]. */
+         * vector, the xy and xz shear stresses) [-], and reverse each
+         * patch's first reference direction, so that its cells keep a
+         * positive orientation in the file. */
         void
         reflect_x(const std::vector<unsigned int> &odd_rows)
         {
@@ -49,6 +51,16 @@ namespace YarnImpact
               for (const unsigned int r : rows)
                 for (unsigned int c = 0; c < patch.data.n_cols(); ++c)
                   patch.data(r, c) = -patch.data(r, c);
+              // Vertices and points are lexicographic, the first
+              // reference direction fastest.
+              for (unsigned int v = 0; v < 8; v += 2)
+                std::swap(patch.vertices[v], patch.vertices[v + 1]);
+              const unsigned int n = patch.n_subdivisions + 1;
+              for (unsigned int line = 0; line < n * n; ++line)
+                for (unsigned int i = 0; i < n / 2; ++i)
+                  for (unsigned int r = 0; r < patch.data.n_rows(); ++r)
+                    std::swap(patch.data(r, line * n + i),
+                              patch.data(r, line * n + n - 1 - i));
             }
         }
       };
