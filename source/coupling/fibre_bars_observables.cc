@@ -110,7 +110,7 @@ namespace YarnImpact
               FibreBreak b;
               b.time  = break_time[index(f, j)];
               b.fibre = f;
-              b.x     = 0.5 * (node_x(j) + node_x(j + 1));
+              b.x     = (mirrored ? -0.5 : 0.5) * (node_x(j) + node_x(j + 1));
               b.y     = fibre_y[f];
               b.z     = fibre_z[f];
               own.push_back(b);

@@ -50,13 +50,15 @@ namespace YarnImpact
                                       (1. - xi) * transverse(c, 1) +
                                         xi * transverse(c + 1, 1)};
               const double X[3]    = {node_x(j), fibre_y[f], fibre_z[f]};
+              // Mirrored bars are written where they stand, at -x.
+              const double sign[3] = {mirrored ? -1. : 1., 1., 1.};
               for (unsigned int d = 0; d < 3; ++d)
                 {
-                  points.push_back(static_cast<float>(X[d] + u[d]));
-                  pd[1].push(u[d]);
+                  points.push_back(static_cast<float>(sign[d] * (X[d] + u[d])));
+                  pd[1].push(sign[d] * u[d]);
                 }
               pd[0].push(f);
-              pd[2].push(velocity[index(f, j)]);
+              pd[2].push(sign[0] * velocity[index(f, j)]);
               if (j + 1 < n_nodes)
                 {
                   lines.push_back(first + static_cast<std::int32_t>(j));
@@ -73,7 +75,8 @@ namespace YarnImpact
           first += static_cast<std::int32_t>(n_nodes);
         }
       std::ostringstream base;
-      base << "bars_" << std::setw(4) << std::setfill('0') << snapshot;
+      base << (mirrored ? "bars_left_" : "bars_") << std::setw(4)
+           << std::setfill('0') << snapshot;
       return VTU::write_parallel(directory,
                                  base.str(),
                                  points,

@@ -25,6 +25,8 @@ namespace YarnImpact
         dem_model->setup(projectile, out);
         if (clamp_model)
           clamp_model->setup(projectile, out);
+        if (left_fe_model)
+          left_fe_model->setup(projectile, out);
 
         // The section the FE part was extruded from: its vertices are the
         // coupled nodes of each node layer of an overlap.
@@ -48,8 +50,27 @@ namespace YarnImpact
                         quarter(),
                         communicator);
             bars.compute_forces(*fe_model, communicator);
+            if (left_fe_model)
+              {
+                left_bars.set_up(*left_fe_model,
+                                 section,
+                                 layout,
+                                 shared.yarn,
+                                 *dem.fibre_y,
+                                 *dem.fibre_z,
+                                 shared.yarn.failure,
+                                 quarter(),
+                                 communicator);
+                left_bars.compute_forces(*left_fe_model, communicator);
+              }
           }
         nose.set_up(*fe_model, section, layout, shared.yarn, communicator);
+        if (left_fe_model)
+          left.set_up(*left_fe_model,
+                      section,
+                      layout,
+                      shared.yarn,
+                      communicator);
         if (clamp_model)
           clamp.set_up(*fe_model, section, layout, shared.yarn, communicator);
 
@@ -70,6 +91,8 @@ namespace YarnImpact
                   << " to " << layout.fe_end * 1e3 << " mm; ";
             else
               out << "the clamp in " << layout.fe_cells << " cells; ";
+            if (left_fe_model)
+              out << "their mirror images on x < 0; ";
             if (layout.fibre_bars)
               out << "far field: " << bars.n_fibres << " fibres of "
                   << bars.n_nodes - 1 << " bars (" << bars.bars_per_cell
@@ -87,14 +110,18 @@ namespace YarnImpact
       {
         const Observables a = fe_model->observables();
         const Observables b = dem_model->observables();
-        Observables c;
+        Observables c, d;
         if (clamp_model)
           c = clamp_model->observables();
-        if (a.max_strain >= 0.9 * shared.yarn.failure_strain &&
+        if (left_fe_model)
+          d = left_fe_model->observables();
+        if (std::max(a.max_strain, d.max_strain) >=
+              0.9 * shared.yarn.failure_strain &&
             shared.yarn.failure && !layout.fibre_bars)
           {
             std::ostringstream s;
-            s << "the FE part's largest fibre strain " << a.max_strain
+            s << "the FE part's largest fibre strain "
+              << std::max(a.max_strain, d.max_strain)
               << " is within 10 % of Yarn/Failure strain "
               << shared.yarn.failure_strain
               << ": fibres would break outside the DEM part"
@@ -127,6 +154,16 @@ namespace YarnImpact
             // at the nose and another at the clamp do not count).
             o.cut_through = o.cut_through || c.cut_through;
           }
+        // A whole yarn's FE part on x < 0.
+        if (left_fe_model)
+          {
+            o.kinetic_energy += d.kinetic_energy;
+            o.elastic_energy += d.elastic_energy;
+            o.contact_energy += d.contact_energy;
+            o.dissipated_energy += d.dissipated_energy;
+            o.max_strain = std::max(o.max_strain, d.max_strain);
+            o.n_eroded += d.n_eroded;
+          }
         if (layout.fibre_bars)
           {
             // The FE part's strain is the section's alone: the bars carry
@@ -137,6 +174,15 @@ namespace YarnImpact
             o.elastic_energy += factor * bars.elastic_energy();
             o.dissipated_energy += factor * bars.dissipated_energy();
             o.n_failed += std::lround(factor * bars.n_broken());
+            if (left_fe_model)
+              {
+                o.max_strain =
+                  std::max(o.max_strain, left_bars.largest_strain());
+                o.kinetic_energy += left_bars.kinetic_energy();
+                o.elastic_energy += left_bars.elastic_energy();
+                o.dissipated_energy += left_bars.dissipated_energy();
+                o.n_failed += left_bars.n_broken();
+              }
             o.cut_through = o.cut_through || every_fibre_broken();
           }
         // The profile: the DEM's stations up to the middle of the overlap,
@@ -191,40 +237,49 @@ namespace YarnImpact
         const std::string clamp_record =
           clamp_model ? clamp_model->write_snapshot(directory, index, time)
                       : std::string();
-        std::string bars_record;
+        std::string bars_record, left_bars_record;
         if (layout.fibre_bars)
           collective_output(communicator, [&] {
             bars_record = bars.write_snapshot(directory, index);
           });
+        // A whole yarn's side x < 0, written where it stands.
+        const std::string left_record =
+          left_fe_model ? left_fe_model->write_snapshot(directory, index, time)
+                        : std::string();
+        if (left_fe_model && layout.fibre_bars)
+          collective_output(communicator, [&] {
+            left_bars_record = left_bars.write_snapshot(directory, index);
+          });
+        // The multiblock's data sets, in the order of their indices.
+        std::vector<std::pair<std::string, std::string>> blocks =
+          {{"fe", fe_record}, {"dem", dem_record}};
+        if (clamp_model)
+          blocks.emplace_back("dem_clamp", clamp_record);
+        if (layout.fibre_bars)
+          blocks.emplace_back("bars", bars_record);
+        if (left_fe_model)
+          blocks.emplace_back("fe_left", left_record);
+        if (left_fe_model && layout.fibre_bars)
+          blocks.emplace_back("bars_left", left_bars_record);
         std::ostringstream name;
         name << "hybrid_" << std::setw(4) << std::setfill('0') << index
              << ".vtm";
         collective_output(communicator, [&] {
           if (Utilities::MPI::this_mpi_process(communicator) == 0)
             {
-              // Both parts as one multiblock data set, so that ParaView
+              // All parts as one multiblock data set, so that ParaView
               // opens them together from hybrid.pvd.
               AtomicFile vtm(directory + "/" + name.str());
               vtm.stream()
                 << "<?xml version=\"1.0\"?>\n"
                 << "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\">\n"
-                << "  <vtkMultiBlockDataSet>\n"
-                << "    <DataSet index=\"0\" name=\"fe\" file=\"" << fe_record
-                << "\"/>\n"
-                << "    <DataSet index=\"1\" name=\"dem\" file=\"" << dem_record
-                << "\"/>\n"
-                << (clamp_model ? "    <DataSet index=\"2\" name=\"dem_clamp\" "
-                                  "file=\"" +
-                                    clamp_record + "\"/>\n"
-                                : std::string())
-                << (layout.fibre_bars ? "    <DataSet index=\"" +
-                                          std::to_string(clamp_model ? 3 : 2) +
-                                          "\" name=\"bars\" "
-                                          "file=\"" +
-                                          bars_record + "\"/>\n"
-                                      : std::string())
-                << "  </vtkMultiBlockDataSet>\n"
-                << "</VTKFile>\n";
+                << "  <vtkMultiBlockDataSet>\n";
+              for (unsigned int k = 0; k < blocks.size(); ++k)
+                vtm.stream() << "    <DataSet index=\"" << k << "\" name=\""
+                             << blocks[k].first << "\" file=\""
+                             << blocks[k].second << "\"/>\n";
+              vtm.stream() << "  </vtkMultiBlockDataSet>\n"
+                           << "</VTKFile>\n";
               vtm.commit();
             }
         });

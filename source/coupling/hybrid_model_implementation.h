@@ -64,6 +64,28 @@ namespace YarnImpact
           nose.station_end                   = layout.dem_trusses + 1;
           if (layout.fibre_bars)
             nose.bars = &bars;
+          if (layout.whole)
+            {
+              // The side x < 0 as the mirror image of the side x > 0: the
+              // same FE part and bars, reflected where they meet the DEM
+              // part (Overlap::mirrored) and where they are written.
+              FE::Parameters mirror = parts.fe;
+              mirror.mirrored       = true;
+              mirror.snapshot_name  = "fe_left";
+              left_fe_model = FE::create_model(fe_shared, mirror, communicator);
+              nose.station_begin += layout.dem_trusses;
+              nose.station_end += layout.dem_trusses;
+              left.dem_part      = dem_model.get();
+              left.mirrored      = true;
+              left.x_begin       = layout.overlap_begin;
+              left.station_begin = 0;
+              left.station_end = layout.overlap_cells * layout.cell_trusses + 1;
+              if (layout.fibre_bars)
+                {
+                  left.bars          = &left_bars;
+                  left_bars.mirrored = true;
+                }
+            }
           if (layout.clamp_cells > 0)
             {
               clamp_model =
@@ -100,6 +122,10 @@ namespace YarnImpact
             dt = std::min(dt, clamp_model->stable_time_step());
           if (layout.fibre_bars)
             dt = std::min(dt, bars.stable_time_step());
+          if (left_fe_model)
+            dt = std::min(dt, left_fe_model->stable_time_step());
+          if (left_fe_model && layout.fibre_bars)
+            dt = std::min(dt, left_bars.stable_time_step());
           return dt;
         }
 
@@ -111,8 +137,17 @@ namespace YarnImpact
           const double f_fe = fe_model->compute_forces(projectile, dt);
           if (layout.fibre_bars)
             bars.compute_forces(*fe_model, communicator);
+          double f_left = 0.;
+          if (left_fe_model)
+            {
+              if (layout.fibre_bars)
+                left_bars.set_continuum_axial(*left_fe_model);
+              f_left = left_fe_model->compute_forces(projectile, dt);
+              if (layout.fibre_bars)
+                left_bars.compute_forces(*left_fe_model, communicator);
+            }
           const double f_dem = dem_model->compute_forces(projectile, dt);
-          if (f_fe != 0.)
+          if (f_fe != 0. || f_left != 0.)
             throw RunError(
               "the projectile touches the FE part of the hybrid yarn: raise "
               "Hybrid/DEM half-length");
@@ -121,6 +156,8 @@ namespace YarnImpact
               "the projectile touches the DEM part at the clamp: lower "
               "Hybrid/Clamp DEM length");
           nose.couple(*fe_model, dt, communicator);
+          if (left_fe_model)
+            left.couple(*left_fe_model, dt, communicator);
           if (clamp_model)
             clamp.couple(*fe_model, dt, communicator);
           return f_fe + f_dem;
@@ -135,6 +172,10 @@ namespace YarnImpact
             clamp_model->kick(dt);
           if (layout.fibre_bars)
             bars.kick(dt);
+          if (left_fe_model)
+            left_fe_model->kick(dt);
+          if (left_fe_model && layout.fibre_bars)
+            left_bars.kick(dt);
         }
 
         void
@@ -146,6 +187,10 @@ namespace YarnImpact
             clamp_model->drift(dt);
           if (layout.fibre_bars)
             bars.drift(dt);
+          if (left_fe_model)
+            left_fe_model->drift(dt);
+          if (left_fe_model && layout.fibre_bars)
+            left_bars.drift(dt);
         }
 
         Observables
@@ -161,7 +206,8 @@ namespace YarnImpact
         mass() const override
         {
           return fe_model->mass() + dem_model->mass() +
-                 (clamp_model ? clamp_model->mass() : 0.);
+                 (clamp_model ? clamp_model->mass() : 0.) +
+                 (left_fe_model ? left_fe_model->mass() : 0.);
         }
 
         std::string
@@ -197,6 +243,13 @@ namespace YarnImpact
             }
           if (layout.fibre_bars)
             bars.save_state(out);
+          if (left_fe_model)
+            {
+              left_fe_model->save_state(out);
+              out.put(left.work);
+              if (layout.fibre_bars)
+                left_bars.save_state(out);
+            }
         }
 
         void
@@ -213,6 +266,13 @@ namespace YarnImpact
             }
           if (layout.fibre_bars)
             bars.load_state(in);
+          if (left_fe_model)
+            {
+              left_fe_model->load_state(in);
+              in.get(left.work);
+              if (layout.fibre_bars)
+                left_bars.load_state(in);
+            }
         }
 
         /** The DEM parts' broken trusses (part "dem", and "clamp" for the
@@ -236,6 +296,9 @@ namespace YarnImpact
           if (layout.fibre_bars)
             for (const FibreBreak &b : bars.fibre_breaks(communicator))
               breaks.push_back(b);
+          if (left_fe_model && layout.fibre_bars)
+            for (const FibreBreak &b : left_bars.fibre_breaks(communicator))
+              breaks.push_back(b);
           std::sort(breaks.begin(), breaks.end(), break_less);
           return breaks;
         }
@@ -253,26 +316,32 @@ namespace YarnImpact
           lines(dem_model->remarks());
           if (clamp_model)
             lines("At the clamp: " + clamp_model->remarks());
+          // The broken bars of a far field, per millimetre of |x|.
+          const auto far_field = [&s](const FibreBars &b, const char *which) {
+            s << "Hybrid far field" << which << ": " << b.n_broken()
+              << " fibre bars broken";
+            const std::vector<unsigned long> c = b.broken_per_millimetre();
+            const char *separator = (b.mirrored ? " (|x|:" : " (x:");
+            for (unsigned int mm = 0; mm < c.size(); ++mm)
+              if (c[mm] > 0)
+                {
+                  s << separator << " " << c[mm] << " in " << mm << "-"
+                    << mm + 1 << " mm";
+                  separator = ",";
+                }
+            if (*separator == ',')
+              s << ")";
+            s << "\n";
+          };
           if (layout.fibre_bars)
-            {
-              s << "Hybrid far field: " << bars.n_broken()
-                << " fibre bars broken";
-              const std::vector<unsigned long> c = bars.broken_per_millimetre();
-              const char *separator              = " (x:";
-              for (unsigned int mm = 0; mm < c.size(); ++mm)
-                if (c[mm] > 0)
-                  {
-                    s << separator << " " << c[mm] << " in " << mm << "-"
-                      << mm + 1 << " mm";
-                    separator = ",";
-                  }
-              if (*separator == ',')
-                s << ")";
-              s << "\n";
-            }
+            far_field(bars, "");
+          if (left_fe_model && layout.fibre_bars)
+            far_field(left_bars, " at x < 0");
           for (const Overlap *o : overlaps())
             {
-              const char *which = (o == &nose ? "" : " at the clamp");
+              const char *which = (o == &nose   ? ""
+                                   : o == &left ? " at x < 0"
+                                                : " at the clamp");
               s << "Hybrid coupling" << which
                 << ": work done by the FE part on the DEM part through the "
                    "overlap "
@@ -287,13 +356,16 @@ namespace YarnImpact
         patch_test(const double strain);
 
       private:
-        /** The overlaps in use: the one by the nose, and the one at the
-         * clamp if there is a DEM part there. */
+        /** The overlaps in use: the one by the nose (on x > 0), and the
+         * one at the clamp if there is a DEM part there, or the one on
+         * x < 0 of a whole yarn. */
         std::vector<const Overlap *>
         overlaps() const
         {
           if (clamp_model)
             return {&nose, &clamp};
+          if (left_fe_model)
+            return {&nose, &left};
           return {&nose};
         }
 
@@ -324,6 +396,12 @@ namespace YarnImpact
         Overlap nose, clamp;
         /** The far field's fibres, with Hybrid/Far field = fibre bars. */
         FibreBars bars;
+        /** A whole yarn's side x < 0 (HybridLayout::whole; null model
+         * otherwise): its FE part, overlap and bars, built as the mirror
+         * images of those of x > 0. */
+        std::unique_ptr<ImpactModel> left_fe_model;
+        Overlap left;
+        FibreBars left_bars;
 
         /** Whether every fibre has a broken truss in the DEM part or a
          * broken bar (under fibre bars; collective). */
@@ -340,7 +418,8 @@ namespace YarnImpact
                 broken[f] = 1.;
           dealii::Utilities::MPI::max(broken, communicator, broken);
           for (unsigned int f = 0; f < dem.n_fibres; ++f)
-            if (broken[f] == 0. && !bars.fibre_broken(f))
+            if (broken[f] == 0. && !bars.fibre_broken(f) &&
+                !(left_fe_model && left_bars.fibre_broken(f)))
               return false;
           return dem.n_fibres > 0;
         }

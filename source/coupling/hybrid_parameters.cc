@@ -52,7 +52,8 @@ namespace YarnImpact
         "Overlap width, so that the fibres are held one by one at the clamp "
         "as in the DEM and may break there (doc/hybrid.md section 5.4); "
         "rounded to whole FE cells, longer than the overlap; 0: none, the "
-        "FE part reaches the clamp [m].");
+        "FE part reaches the clamp (the only value with Symmetry = none) "
+        "[m].");
       prm.declare_entry(
         "Far field",
         "continuum",
@@ -142,7 +143,9 @@ namespace YarnImpact
         l.dem_trusses - l.overlap_cells * l.cell_trusses;
       l.overlap_begin = l.first_coupled_station * l.station_spacing;
       l.fe_end        = half;
-      l.fibre_bars    = hybrid.fibre_bars;
+      l.whole =
+        shared.general.symmetry == YarnImpact::Parameters::Symmetry::none;
+      l.fibre_bars = hybrid.fibre_bars;
       l.bars_per_cell =
         hybrid.bars_per_cell > 0 ? hybrid.bars_per_cell : l.cell_trusses;
       if (hybrid.clamp_dem_length > 0.)
@@ -187,13 +190,30 @@ namespace YarnImpact
       for (unsigned int s = l.first_coupled_station; s < l.dem_trusses; ++s)
         p.dem.truss_weight[s] =
           l.particle_weight((s - l.first_coupled_station) / l.cell_trusses);
-      // A station's weight is the mean of its two trusses' (the end's outer
-      // side is the FE's alone).
-      p.dem.station_weight.assign(l.dem_trusses + 1, 1.);
-      for (unsigned int s = 1; s <= l.dem_trusses; ++s)
+      // The whole yarn's DEM part spans |x| <= a, its trusses counted from
+      // x = -a: those on x < 0 weighted as the mirror images of those on
+      // x > 0.
+      if (l.whole)
+        {
+          const std::vector<double> positive = p.dem.truss_weight;
+          p.dem.truss_weight.assign(2 * l.dem_trusses, 1.);
+          for (unsigned int t = 0; t < l.dem_trusses; ++t)
+            {
+              p.dem.truss_weight[l.dem_trusses - 1 - t] = positive[t];
+              p.dem.truss_weight[l.dem_trusses + t]     = positive[t];
+            }
+        }
+      // A station's weight is the mean of its two trusses' (an end's outer
+      // side is the FE's alone; the first station of a half yarn is on the
+      // symmetry plane, its weight 1).
+      const unsigned int n_trusses = p.dem.truss_weight.size();
+      p.dem.station_weight.assign(n_trusses + 1, 1.);
+      for (unsigned int s = 1; s <= n_trusses; ++s)
         p.dem.station_weight[s] =
           0.5 * (p.dem.truss_weight[s - 1] +
-                 (s < l.dem_trusses ? p.dem.truss_weight[s] : 0.));
+                 (s < n_trusses ? p.dem.truss_weight[s] : 0.));
+      if (l.whole)
+        p.dem.station_weight[0] = 0.5 * p.dem.truss_weight[0];
 
       // The FE part: x in [a - w, L/2], the DEM's yarn, no failure.
       p.fe_shared              = shared;
@@ -251,10 +271,12 @@ namespace YarnImpact
              const DEM::Parameters &dem,
              const HybridParameters &hybrid)
     {
-      require(shared.general.symmetry != YarnImpact::Parameters::Symmetry::none,
-              "Symmetry",
-              "must be half or quarter for Model = hybrid (the DEM part "
-              "and the overlap are built on x >= 0)");
+      require(shared.general.symmetry !=
+                  YarnImpact::Parameters::Symmetry::none ||
+                hybrid.clamp_dem_length == 0.,
+              "Hybrid/Clamp DEM length",
+              "must be 0 with Symmetry = none (the whole yarn's hybrid has no "
+              "DEM parts at the clamps)");
       require(fe.global_refinements == 0,
               "FE/Global refinements",
               "must be 0 for Model = hybrid (the overlap's weights are per "
@@ -302,7 +324,10 @@ namespace YarnImpact
       const HybridLayout l    = hybrid_layout(shared, fe, dem, hybrid);
       const HybridParts parts = hybrid_parts(shared, fe, dem, l);
       MemoryEstimate e = DEM::memory_estimate(parts.dem_shared, parts.dem);
-      e.bytes += FE::memory_estimate(parts.fe_shared, parts.fe).bytes;
+      // The whole yarn's second FE part and bars (x < 0) are copies of
+      // the first's.
+      const double sides = l.whole ? 2. : 1.;
+      e.bytes += sides * FE::memory_estimate(parts.fe_shared, parts.fe).bytes;
       if (l.clamp_cells > 0)
         {
           const MemoryEstimate c =
@@ -313,8 +338,8 @@ namespace YarnImpact
       // The fibre bars: every rank holds every fibre's arrays (six
       // doubles and a flag per bar node, FibreBars::memory_consumption).
       if (l.fibre_bars)
-        e.bytes +=
-          49. * shared.yarn.n_fibres * (l.fe_cells * l.bars_per_cell + 1);
+        e.bytes += sides * 49. * shared.yarn.n_fibres *
+                   (l.fe_cells * l.bars_per_cell + 1);
       e.parameter = "Hybrid/DEM half-length";
       return e;
     }

@@ -19,17 +19,26 @@ namespace YarnImpact
         std::vector<ImpactModel *> dem_parts = {dem_model.get()};
         if (clamp_model)
           dem_parts.push_back(clamp_model.get());
+        // The FE parts with their bars (a whole yarn's side x < 0 is the
+        // mirror image of x > 0: the same stretch in its frame).
+        std::vector<std::pair<ImpactModel *, FibreBars *>> sides = {
+          {fe_model.get(), &bars}};
+        if (left_fe_model)
+          sides.emplace_back(left_fe_model.get(), &left_bars);
         {
-          const FE::CouplingView fe = FE::coupling_view(*fe_model);
-          for (const auto &node : *fe.nodes)
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                fe.displacement[node[d]] =
-                  d == 0 && !layout.fibre_bars
-                    ? strain * (*fe.reference_coordinate)[node[0]]
-                    : 0.;
-                fe.velocity[node[d]] = 0.;
-              }
+          for (const auto &side : sides)
+            {
+              const FE::CouplingView fe = FE::coupling_view(*side.first);
+              for (const auto &node : *fe.nodes)
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    fe.displacement[node[d]] =
+                      d == 0 && !layout.fibre_bars
+                        ? strain * (*fe.reference_coordinate)[node[0]]
+                        : 0.;
+                    fe.velocity[node[d]] = 0.;
+                  }
+            }
           for (ImpactModel *part : dem_parts)
             {
               const DEM::CouplingView dem = DEM::coupling_view(*part);
@@ -47,54 +56,64 @@ namespace YarnImpact
         far.place_on(1.);
         // Under fibre bars the bars take the stretch, the continuum's axial
         // motion is held.
-        if (layout.fibre_bars)
-          for (unsigned int f = 0; f < bars.n_fibres; ++f)
-            for (unsigned int j = 0; j < bars.n_nodes; ++j)
-              {
-                const std::size_t i  = bars.index(f, j);
-                bars.displacement[i] = strain * bars.node_x(j);
-                bars.velocity[i]     = 0.;
-              }
-        // The models' own forces, then the generalised ones of the coupled
-        // system (couple() replaces the overlaps').
-        if (layout.fibre_bars)
-          bars.set_continuum_axial(*fe_model);
-        fe_model->compute_forces(far, 0.);
-        if (layout.fibre_bars)
+        for (const auto &[fe_part, b] : sides)
           {
-            bars.compute_forces(*fe_model, communicator);
-            // The own fibres' bar nodes outside the overlap but the clamped
-            // one.
-            for (unsigned int f = bars.fibre_begin; f < bars.fibre_end; ++f)
-              for (unsigned int j =
-                     layout.overlap_cells * bars.bars_per_cell + 1;
-                   j + 1 < bars.n_nodes;
-                   ++j)
-                largest =
-                  std::max(largest, std::abs(bars.force[bars.index(f, j)]));
+            if (layout.fibre_bars)
+              for (unsigned int f = 0; f < b->n_fibres; ++f)
+                for (unsigned int j = 0; j < b->n_nodes; ++j)
+                  {
+                    const std::size_t i = b->index(f, j);
+                    b->displacement[i]  = strain * b->node_x(j);
+                    b->velocity[i]      = 0.;
+                  }
+            // The models' own forces, then the generalised ones of the
+            // coupled system (couple() replaces the overlaps').
+            if (layout.fibre_bars)
+              b->set_continuum_axial(*fe_part);
+            fe_part->compute_forces(far, 0.);
+            if (layout.fibre_bars)
+              {
+                b->compute_forces(*fe_part, communicator);
+                // The own fibres' bar nodes outside the overlap but the
+                // clamped one.
+                for (unsigned int f = b->fibre_begin; f < b->fibre_end; ++f)
+                  for (unsigned int j =
+                         layout.overlap_cells * b->bars_per_cell + 1;
+                       j + 1 < b->n_nodes;
+                       ++j)
+                    largest =
+                      std::max(largest, std::abs(b->force[b->index(f, j)]));
+              }
           }
         for (ImpactModel *part : dem_parts)
           part->compute_forces(far, 0.);
-        const FE::CouplingView fe = FE::coupling_view(*fe_model);
-        std::vector<bool> coupled(fe.reference_coordinate->size(), false);
-        for (const Overlap *o : overlaps())
-          for (const auto &[c, dofs] : o->owned_nodes)
-            for (unsigned int d = 0; d < 3; ++d)
-              coupled[dofs[d]] = true;
-        for (const auto &node : *fe.nodes)
-          for (unsigned int d = 0; d < 3; ++d)
-            if (!coupled[node[d]] && fe.inverse_mass[node[d]] != 0.)
-              largest = std::max(largest, std::abs(fe.force[node[d]]));
+        for (const auto &side : sides)
+          {
+            const FE::CouplingView fe = FE::coupling_view(*side.first);
+            std::vector<bool> coupled(fe.reference_coordinate->size(), false);
+            for (const Overlap *o : overlaps())
+              if ((o == &left) == (side.first == left_fe_model.get()))
+                for (const auto &[c, dofs] : o->owned_nodes)
+                  for (unsigned int d = 0; d < 3; ++d)
+                    coupled[dofs[d]] = true;
+            for (const auto &node : *fe.nodes)
+              for (unsigned int d = 0; d < 3; ++d)
+                if (!coupled[node[d]] && fe.inverse_mass[node[d]] != 0.)
+                  largest = std::max(largest, std::abs(fe.force[node[d]]));
+          }
         // The free spheres outside the overlaps: the DEM part's by the nose
-        // (x normal to the plane x = 0 is held there), the one's at the
+        // (x normal to the plane x = 0 is held there; a whole yarn's
+        // DEM-only zone lies between its two overlaps), the one's at the
         // clamp but the clamped station.
         {
           const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
-          for (unsigned int s = dem.station_begin;
+          const bool plane            = !left_fe_model;
+          for (unsigned int s =
+                 std::max(dem.station_begin, plane ? 0u : left.station_end);
                s < std::min(dem.station_end, nose.station_begin);
                ++s)
             for (unsigned int f = 0; f < dem.n_fibres; ++f)
-              for (unsigned int d = (s == 0 ? 1 : 0); d < 3; ++d)
+              for (unsigned int d = (plane && s == 0 ? 1 : 0); d < 3; ++d)
                 largest =
                   std::max(largest,
                            std::abs(dem.force[3 * dem.local_index(s, f) + d]));
@@ -114,6 +133,8 @@ namespace YarnImpact
                                dem.force[3 * dem.local_index(s, f) + d]));
           }
         nose.couple(*fe_model, 0., communicator);
+        if (left_fe_model)
+          left.couple(*left_fe_model, 0., communicator);
         if (clamp_model)
           clamp.couple(*fe_model, 0., communicator);
         for (const Overlap *o : overlaps())

@@ -73,10 +73,11 @@ namespace YarnImpact
                             fibre_vertices[f],
                             fibre_values[f]);
         }
-      for (unsigned int s = station_begin; s < station_end; ++s)
+      for (unsigned int q = 0; q < station_end - station_begin; ++q)
         {
-          const double x = (*dem.station_x)[s];
-          const double t = (x - x_begin) / h;
+          const unsigned int s = station_of(q);
+          const double x       = x_sign() * (*dem.station_x)[s];
+          const double t       = (x - x_begin) / h;
           const unsigned int cell =
             std::min<unsigned int>(layout.overlap_cells - 1,
                                    t <= 0. ? 0u : unsigned(std::floor(t)));
@@ -137,16 +138,19 @@ namespace YarnImpact
             node_force[3 * c + d]    = fe.force[dofs[d]];
             node_velocity[3 * c + d] = fe.velocity[dofs[d]];
           }
-      const unsigned int first   = station_begin;
-      const unsigned int s_begin = std::max(first, dem.station_begin);
+      const unsigned int s_begin = std::max(station_begin, dem.station_begin);
       const unsigned int s_end   = std::min(station_end, dem.station_end);
+      // The x components' factor (1, or -1 into a mirrored FE part's
+      // frame: exact either way).
+      const double sign[3] = {x_sign(), 1., 1.};
       for (unsigned int s = s_begin; s < s_end; ++s)
         for (unsigned int f = 0; f < n_fibres; ++f)
           {
             const std::size_t i = dem.local_index(s, f);
-            const std::size_t p = std::size_t(s - first) * n_fibres + f;
+            const std::size_t p =
+              std::size_t(coupled_station(s)) * n_fibres + f;
             for (unsigned int d = 0; d < 3; ++d)
-              particle_force[3 * p + d] = dem.force[3 * i + d];
+              particle_force[3 * p + d] = sign[d] * dem.force[3 * i + d];
           }
       Utilities::MPI::sum(node_force, communicator, node_force);
       Utilities::MPI::sum(node_velocity, communicator, node_velocity);
@@ -183,10 +187,12 @@ namespace YarnImpact
         for (unsigned int f = 0; f < n_fibres; ++f)
           {
             const std::size_t i = dem.local_index(s, f);
-            const std::size_t p = std::size_t(s - first) * n_fibres + f;
-            const double m      = 1. / dem.inverse_mass(s, f);
+            const std::size_t p =
+              std::size_t(coupled_station(s)) * n_fibres + f;
+            const double m = 1. / dem.inverse_mass(s, f);
             for (unsigned int d = 0; d < 3; ++d)
-              dem.force[3 * i + d] = particle_acceleration[3 * p + d] * m;
+              dem.force[3 * i + d] =
+                sign[d] * (particle_acceleration[3 * p + d] * m);
           }
     }
 
@@ -209,9 +215,10 @@ namespace YarnImpact
           ChainConstraint &tie = fibre_constraints[f];
           for (unsigned int j = 0; j < n_tied; ++j)
             tie.set_node_mass(j, bars->mass[bars->index(f, j)]);
-          for (unsigned int s = station_begin; s < station_end; ++s)
+          for (unsigned int q = 0; q < n_stations; ++q)
             {
-              const double t = ((*dem.station_x)[s] - x_begin) / h_b;
+              const unsigned int s = station_of(q);
+              const double t = (x_sign() * (*dem.station_x)[s] - x_begin) / h_b;
               unsigned int j = std::lround(t);
               double xi      = 0.;
               if (std::abs(t - j) > 1e-9)

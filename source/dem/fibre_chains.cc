@@ -84,9 +84,13 @@ namespace YarnImpact
           {
             const double x   = x_begin + s * L0;
             const bool plane = x_sym && s == 0;
+            // A coupled part's ends are tied to the continuum, not
+            // clamped: the last station's, and with no symmetry plane the
+            // first's too (the whole yarn's DEM part, doc/hybrid.md
+            // section 3.1).
             const bool clamped =
               clamp_part ? s == n_st - 1
-                         : (!coupled && s == n_st - 1) || (!x_sym && s == 0);
+                         : !coupled && (s == n_st - 1 || (!x_sym && s == 0));
             const double weight = coupled ? prm.station_weight[s] : 1.;
             station_x0.push_back(x);
             station_symmetry_weight.push_back(plane ? 0.5 : 1.);

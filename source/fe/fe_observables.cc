@@ -21,6 +21,52 @@ namespace YarnImpact
     using namespace dealii;
 
 
+    namespace
+    {
+      /**
+       * deal.II's DataOut whose patches can be reflected x -> -x after
+       * build_patches(): a part built as the mirror image of the yarn it
+       * stands for (FE::Parameters::mirrored) is written where it is.
+       */
+      class ReflectedDataOut : public DataOut<3>
+      {
+      public:
+        /** Negate the patches' x coordinates and their data rows
+         * @p odd_rows (the components odd under the reflection: x of a
+         * vector, the xy and xz shear stresses) [-], and reverse each
+         * patch's first reference direction, so that its cells keep a
+         * positive orientation in the file. */
+        void
+        reflect_x(const std::vector<unsigned int> &odd_rows)
+        {
+          for (auto &patch : patches)
+            {
+              for (auto &vertex : patch.vertices)
+                vertex[0] = -vertex[0];
+              std::vector<unsigned int> rows = odd_rows;
+              // Curved patches carry their points' coordinates as the
+              // last three rows.
+              if (patch.points_are_available)
+                rows.push_back(patch.data.n_rows() - 3);
+              for (const unsigned int r : rows)
+                for (unsigned int c = 0; c < patch.data.n_cols(); ++c)
+                  patch.data(r, c) = -patch.data(r, c);
+              // Vertices and points are lexicographic, the first
+              // reference direction fastest.
+              for (unsigned int v = 0; v < 8; v += 2)
+                std::swap(patch.vertices[v], patch.vertices[v + 1]);
+              const unsigned int n = patch.n_subdivisions + 1;
+              for (unsigned int line = 0; line < n * n; ++line)
+                for (unsigned int i = 0; i < n / 2; ++i)
+                  for (unsigned int r = 0; r < patch.data.n_rows(); ++r)
+                    std::swap(patch.data(r, line * n + i),
+                              patch.data(r, line * n + n - 1 - i));
+            }
+        }
+      };
+    } // namespace
+
+
     template <class Law>
     Observables
     YarnModel<Law>::observables() const
@@ -363,7 +409,7 @@ namespace YarnImpact
           fields[12][id] = cells.damage[c];
         }
 
-      DataOut<3> data_out;
+      ReflectedDataOut data_out;
       data_out.attach_dof_handler(dof_handler);
       const std::vector<
         DataComponentInterpretation::DataComponentInterpretation>
@@ -416,14 +462,19 @@ namespace YarnImpact
       // The geometry written is the deformed one.
       MappingQEulerian<3, VectorType> mapping(1, dof_handler, displacement);
       data_out.build_patches(mapping);
+      // The rows of the data added above: displacement and velocity (3
+      // each), then the cell fields in the order of names[].
+      if (parameters.mirrored)
+        data_out.reflect_x({0, 3, 6 + 7, 6 + 8});
       // The file names of deal.II's write_vtu_with_pvtu_record (one piece
       // per rank), each written whole or not at all.
       const unsigned int n_ranks =
         Utilities::MPI::n_mpi_processes(communicator);
       const unsigned int digits =
         Utilities::needed_digits(std::max(0, int(n_ranks) - 1));
-      const std::string base = "fe_" + Utilities::int_to_string(index, 4);
-      const auto piece       = [&](const unsigned int r) {
+      const std::string base =
+        parameters.snapshot_name + "_" + Utilities::int_to_string(index, 4);
+      const auto piece = [&](const unsigned int r) {
         return base + "." + Utilities::int_to_string(r, digits) + ".vtu";
       };
       const unsigned int this_rank =

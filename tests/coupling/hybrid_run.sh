@@ -83,7 +83,8 @@ refuse plain_prm "overlap as wide as the DEM part" "Hybrid/Overlap width" \
   'subsection Hybrid\n  set Overlap width = 7e-3\nend\n'
 refuse plain_prm "negative overlap" "Hybrid/Overlap width" \
   'subsection Hybrid\n  set Overlap width = -1e-3\nend\n'
-refuse plain_prm "no symmetry" "Symmetry" 'set Symmetry = none\n'
+refuse plain_prm "no symmetry with a clamp part" "Hybrid/Clamp DEM length" \
+  'set Symmetry = none\nsubsection Hybrid\n  set Clamp DEM length = 2e-3\nend\n'
 refuse plain_prm "clamp part no longer than the overlap" "Hybrid/Clamp DEM length" \
   'subsection Hybrid\n  set Clamp DEM length = 1e-3\nend\n'
 refuse plain_prm "clamp part meeting the nose's overlap" "Hybrid/Clamp DEM length" \

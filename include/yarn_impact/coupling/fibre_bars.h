@@ -168,6 +168,12 @@ namespace YarnImpact
       std::vector<double>
       mean_strains() const;
 
+      /** Whether the bars stand for the mirror image x -> -x of
+       * themselves (those of the FE part on x < 0 of a whole yarn,
+       * FE::Parameters::mirrored): their snapshots (`bars_left_NNNN`) and
+       * breaks are given at -x. */
+      bool mirrored = false;
+
       /** Fibres, bar nodes per fibre, bars per FE cell and FE node layers
        * [-]. */
       unsigned int n_fibres = 0, n_nodes = 0, bars_per_cell = 1, n_layers = 0;
@@ -206,10 +212,10 @@ namespace YarnImpact
 
       /**
        * Write a snapshot of the bars: `<directory>/bars_NNNN.pvtu` (NNNN =
-       * @p snapshot) with one `.vtu` piece per rank, its own fibres as
-       * polylines of bar nodes at their positions (the axial displacement
-       * their own, the transverse the continuum's at the last
-       * compute_forces()). Point data: fibre_id, displacement [m],
+       * @p snapshot; `bars_left_NNNN.pvtu` when mirrored) with one `.vtu` piece
+       * per rank, its own fibres as polylines of bar nodes at their positions
+       * (the axial displacement their own, the transverse the continuum's at
+       * the last compute_forces()). Point data: fibre_id, displacement [m],
        * axial_velocity [m/s]; cell data per bar: strain [-], force (its
        * tension) [N], broken. Collective.
        * @return the file name of the record, relative to @p directory

@@ -49,10 +49,12 @@ namespace YarnImpact
     };
 
     /**
-     * Where the two parts of a hybrid yarn lie (half symmetry, x >= 0),
-     * rounded so that the FE cells of the overlap hold whole DEM truss
-     * lengths and its node layers sit on DEM stations (doc/hybrid.md
-     * section 3.1).
+     * Where the parts of a hybrid yarn lie on x >= 0, rounded so that the
+     * FE cells of the overlap hold whole DEM truss lengths and its node
+     * layers sit on DEM stations (doc/hybrid.md section 3.1). With
+     * `Symmetry = none` (whole) the DEM part spans |x| <= a and the side
+     * x <= 0 has an FE part, an overlap and bars of its own, the mirror
+     * images of these.
      */
     struct HybridLayout
     {
@@ -75,6 +77,10 @@ namespace YarnImpact
        * the FE part ends, x_c + w (L/2 without it) [m]. */
       unsigned int clamp_cells = 0, clamp_trusses = 0;
       double clamp_begin = 0., fe_end = 0.;
+      /** Whether the yarn is modelled whole (`Symmetry = none`): the DEM
+       * part spans |x| <= a and the side x < 0 has the mirror images of
+       * the FE part, its overlap and its bars. */
+      bool whole = false;
       /** Whether the far field has fibre bars (HybridParameters), and how
        * many per FE cell [-]. */
       bool fibre_bars            = false;

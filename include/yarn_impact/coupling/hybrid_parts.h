@@ -35,7 +35,10 @@ namespace YarnImpact
      * the FE part, x in [a - w, L/2] (or [a - w, x_c + w]), with the
      * continuum weights per
      * cell layer, the density and axial modulus from the fibres, and no
-     * failure (the DEM part holds the breaks). The FE part's section
+     * failure (the DEM part holds the breaks). With `Symmetry = none` the
+     * DEM part is |x| <= a, weighted on x < 0 as the mirror image of
+     * x > 0, whose FE part the model builds a second time, mirrored, for
+     * x < 0 (HybridLayout::whole). The FE part's section
      * quadrature (section_quadrature()) is set by the model only: it is
      * the one field that costs a search over the fibres.
      */

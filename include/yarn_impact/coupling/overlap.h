@@ -37,6 +37,38 @@ namespace YarnImpact
        * in z, and so are they in the constraint. */
       bool z_symmetry = false;
 
+      /**
+       * The overlap on x < 0 of a whole yarn, whose FE part (and bars) is
+       * built as the mirror image x -> -x of the one on x > 0
+       * (FE::Parameters::mirrored): the spheres' reference x, forces and
+       * accelerations are reflected into that frame and back, and the
+       * spheres are counted from the station nearest the DEM-only zone,
+       * so that the constraint is the one of x > 0 (x_begin is then the
+       * mirror image's, a - w).
+       */
+      bool mirrored = false;
+
+      /** The DEM station of the @p q-th coupled station, counted from the
+       * DEM-only zone [-]. */
+      unsigned int
+      station_of(const unsigned int q) const
+      {
+        return mirrored ? station_end - 1 - q : station_begin + q;
+      }
+      /** The inverse of station_of() [-]. */
+      unsigned int
+      coupled_station(const unsigned int s) const
+      {
+        return mirrored ? station_end - 1 - s : s - station_begin;
+      }
+      /** The factor from the DEM's x components to the FE part's (and
+       * back) [-]. */
+      double
+      x_sign() const
+      {
+        return mirrored ? -1. : 1.;
+      }
+
       BridgingConstraint constraint;
       /** Coupled FE nodes owned here: coupled index and local dofs. */
       std::vector<std::pair<unsigned int, std::array<unsigned int, 3>>>

@@ -208,6 +208,15 @@ namespace YarnImpact
        * are crushed as those of a failing FE yarn (doc/hybrid.md section
        * 3.4). */
       bool erode_crushed_cells = false;
+      /** Also set by a coupling: the part models the mirror image x -> -x
+       * of the yarn it stands for (the FE part on x < 0 of a whole hybrid
+       * yarn is built as the one on x > 0, doc/hybrid.md section 3.1), so
+       * its snapshots are written reflected back, under the file name
+       * snapshot_name. */
+      bool mirrored = false;
+      /** Also set by a coupling: the snapshots' file name before
+       * `_NNNN.pvtu` (`fe` by default). */
+      std::string snapshot_name = "fe";
       /** Set by a model whose yarns are curved, never by a `.prm`: the unit
        * fibre direction M(X) [-] (written to the second argument) at a
        * reference point X = (x, y, z) [m], given to every Gauss point as

@@ -1,0 +1,118 @@
+#!/bin/bash
+# Usage: whole_yarn.sh YARN_IMPACT SOURCE_DIR
+# The hybrid yarn modelled whole (Symmetry = none: the DEM part |x| <= a,
+# an FE part, an overlap and, with fibre bars, bars on each side) against
+# the same yarn with half symmetry (a consistency check against an
+# independent run, no recorded numbers):
+# - the ready case (prm/hybrid/km2_120ms_hybrid.prm) with a 3 mm DEM part
+#   over 0.6 us, the longitudinal wave through both overlaps and into both
+#   FE parts, with each far field (continuum and fibre bars); the DEM's
+#   fibres lie along x, so its layout is symmetric about x = 0;
+# - the histories of the whole yarn agree: the projectile's velocity and
+#   force, the energies and the largest strain within 1e-5 of each
+#   quantity's largest value over the run (the whole DEM part sums its
+#   contacts in another order than the half's, whose plane x = 0 holds
+#   half spheres), the failed elements equal;
+# - the whole yarn with fibre bars to 0.3 us: its history on 2 ranks byte
+#   for byte that of 1 rank stopped by SIGTERM and continued with
+#   --restart (every part's checkpoint);
+# - its snapshot a multiblock of the FE part, the DEM part, the bars and
+#   the side x < 0's FE part and bars, every file there;
+# - bad set-ups refused by --check with one line naming the parameter.
+exe=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+failures=0
+fail() {
+  echo "FAILED $*"
+  failures=$((failures + 1))
+}
+
+# case_prm SYMMETRY FAR_FIELD DIR
+case_prm() {
+  cat "$src/prm/hybrid/km2_120ms_hybrid.prm"
+  printf 'set Symmetry = %s\n' "$1"
+  printf 'subsection Hybrid\n  set DEM half-length = 3e-3\n  set Far field = %s\nend\n' "$2"
+  printf 'subsection Time\n  set End time = 0.6e-6\nend\n'
+  printf 'subsection Output\n  set Directory = %s\n  set Snapshot interval = 0\n' "$3"
+  printf '  set History interval = 0.05e-6\nend\n'
+}
+
+for far in continuum "fibre bars"; do
+  tag=${far// /_}
+  for sym in half none; do
+    case_prm "$sym" "$far" "${sym}_$tag" > "${sym}_$tag.prm"
+    "$exe" "${sym}_$tag.prm" > "${sym}_$tag.stdout" 2>&1 ||
+      { fail "$sym, $far: exit $?"; tail -5 "${sym}_$tag.stdout"; }
+  done
+  /usr/bin/python3 - "half_$tag/history_hybrid.csv" "none_$tag/history_hybrid.csv" "$far" << 'END' ||
+import csv, sys
+a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:3])
+columns = ["projectile velocity [m/s]", "contact force [N]",
+           "yarn kinetic energy [mJ]", "elastic energy [mJ]",
+           "contact energy [mJ]", "dissipated energy [mJ]",
+           "max longitudinal strain [-]"]
+ok = len(a) == len(b) == 13
+worst = (0., "", "")
+for c in columns:
+    # Relative to the column's largest value over the run.
+    scale = max(abs(float(x[c])) for x in a)
+    for x, y in zip(a, b):
+        d = abs(float(x[c]) - float(y[c])) / scale if scale > 0. else 0.
+        if d > worst[0]:
+            worst = (d, c, x["t [us]"])
+for x, y in zip(a, b):
+    ok = ok and x["failed elements"] == y["failed elements"]
+print(f"{sys.argv[3]}: whole yarn against half, largest relative "
+      f"difference {worst[0]:.2e} ({worst[1]} at {worst[2]} us), "
+      f"{len(a)} rows")
+sys.exit(0 if ok and worst[0] <= 1e-5 else 1)
+END
+    fail "$far: the whole yarn's history differs from the half model's"
+done
+
+. "$src/tests/coupling/run_checks.sh"
+
+# The whole yarn with fibre bars to 0.3 us on 2 ranks, with its snapshot
+# at 0.3 us; on 1 rank stopped at row 4 and continued: the same history
+# byte for byte (one check of both: the ranks' and the checkpoint's).
+whole_prm() {
+  case_prm none "fibre bars" "$1"
+  printf 'subsection Time\n  set End time = 0.3e-6\nend\n'
+  printf 'subsection Output\n  set Snapshot interval = 0.3e-6\nend\n'
+}
+same_on_ranks whole_prm 2
+if [ -f ranks2/history_hybrid.csv ]; then
+  restart_same whole_prm 4 ranks2/history_hybrid.csv
+fi
+
+vtm=$(ls ranks2/hybrid_*.vtm 2> /dev/null | tail -1)
+if [ -z "$vtm" ]; then
+  fail "2 ranks: no snapshot"
+else
+  for block in fe dem bars fe_left bars_left; do
+    file=$(sed -n "s/.* name=\"$block\" file=\"\([^\"]*\)\".*/\1/p" "$vtm")
+    [ -n "$file" ] && [ -f "ranks2/$file" ] ||
+      fail "snapshot: block $block missing from $vtm or its file"
+  done
+fi
+
+# Bad set-ups of the whole yarn: one line naming the parameter, exit 1.
+plain_prm() {
+  cat "$src/prm/hybrid/km2_120ms_hybrid.prm"
+  printf 'set Symmetry = none\n'
+}
+refuse plain_prm "a DEM part at the clamps" "Hybrid/Clamp DEM length" \
+  'subsection Hybrid\n  set Clamp DEM length = 2e-3\nend\n'
+refuse plain_prm "contact zone in an overlap" "Hybrid/DEM half-length" \
+  'subsection Hybrid\n  set DEM half-length = 1.5e-3\nend\n'
+refuse plain_prm "overlap as wide as the DEM part" "Hybrid/Overlap width" \
+  'subsection Hybrid\n  set Overlap width = 7e-3\nend\n'
+
+if [ $failures -ne 0 ]; then
+  echo "$failures check(s) failed"
+  exit 1
+fi
+echo "hybrid: whole yarn = half for both far fields, 1 = 2 ranks, restart, snapshot, bad set-ups: all passed"
