@@ -21,14 +21,8 @@
 # - bad set-ups refused by --check with one line naming the parameter.
 exe=$1
 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-failures=0
-fail() {
-  echo "FAILED $*"
-  failures=$((failures + 1))
-}
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 
 # case_prm SYMMETRY FAR_FIELD DIR
 case_prm() {
@@ -111,8 +105,4 @@ refuse plain_prm "contact zone in an overlap" "Hybrid/DEM half-length" \
 refuse plain_prm "overlap as wide as the DEM part" "Hybrid/Overlap width" \
   'subsection Hybrid\n  set Overlap width = 7e-3\nend\n'
 
-if [ $failures -ne 0 ]; then
-  echo "$failures check(s) failed"
-  exit 1
-fi
-echo "hybrid: whole yarn = half for both far fields, 1 = 2 ranks, restart, snapshot, bad set-ups: all passed"
+test_end "hybrid: whole yarn = half for both far fields, 1 = 2 ranks, restart, snapshot, bad set-ups: all passed"
