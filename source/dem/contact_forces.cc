@@ -23,6 +23,10 @@ namespace YarnImpact
                            double *__restrict dissipated)
       {
         const double d2 = d * d;
+        // The owned spheres' range, read once: the row loop credits each
+        // row's dissipation to its sphere if this rank owns it.
+        const std::size_t own_b = decomposition.own_b,
+                          own_e = decomposition.own_e;
         for (ListBlock &B : blocks)
           {
             const std::uint32_t *__restrict pstart = B.pstart.data();
@@ -83,7 +87,7 @@ namespace YarnImpact
                 F[3 * i] += fx;
                 F[3 * i + 1] += fy;
                 F[3 * i + 2] += fz;
-                if (decomposition.owned(i))
+                if (i >= own_b && i < own_e)
                   dissipated[i] += row_diss;
               }
           }

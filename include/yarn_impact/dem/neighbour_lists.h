@@ -177,11 +177,14 @@ namespace YarnImpact
        * build of block @p B to the block's rebuild criterion. Inline: the
        * drift calls it for every owned sphere.
        */
+      template <bool searched>
       inline void
-      accumulate_criterion(ListBlock &B, const double *pos, const std::size_t i)
+      accumulate_criterion_of(ListBlock &B,
+                              const double *pos,
+                              const std::size_t i)
       {
         const std::size_t k = i - B.row_sphere_begin;
-        if (!B.searched || !B.fast[k])
+        if (!searched || !B.fast[k])
           {
             const std::uint32_t b = B.bin_of[k];
             const double dx       = pos[3 * i] - B.pos_build[3 * k];
@@ -195,7 +198,7 @@ namespace YarnImpact
             B.bin_displacement_sum[3 * b + 1] += dy;
             B.bin_displacement_sum[3 * b + 2] += dz;
           }
-        if (!B.searched)
+        if constexpr (!searched)
           return;
         // Since the last partial search: every sphere of the build.
         const std::uint32_t b = B.bin_of_search[k];
@@ -212,6 +215,19 @@ namespace YarnImpact
         B.search_displacement_sum[3 * b] += dx;
         B.search_displacement_sum[3 * b + 1] += dy;
         B.search_displacement_sum[3 * b + 2] += dz;
+      }
+
+      /** accumulate_criterion_of() for a block that a partial search has
+       * searched or not: the drift, which calls it for every owned sphere,
+       * picks the variant once per cross-section, so that the lists of
+       * whole-block builds (the default) cost no test per sphere. */
+      inline void
+      accumulate_criterion(ListBlock &B, const double *pos, const std::size_t i)
+      {
+        if (B.searched)
+          accumulate_criterion_of<true>(B, pos, i);
+        else
+          accumulate_criterion_of<false>(B, pos, i);
       }
 
 
