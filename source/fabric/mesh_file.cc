@@ -28,19 +28,39 @@ namespace YarnImpact
       const char *const mesh_entry        = "Fabric/Mesh file";
       const char *const orientation_entry = "Fabric/Orientation file";
 
-      /** The first line of @p text (deal.II's messages span several). */
+      /** The gist of deal.II's message @p text in one line: its
+       * "Additional information" (the reader's reason), else its first
+       * line. */
       std::string
       first_line(const std::string &text)
       {
         std::istringstream in(text);
-        std::string line;
+        std::string line, gist, first;
+        bool additional = false;
         while (std::getline(in, line))
           {
             const auto b = line.find_first_not_of(" \t-");
-            if (b != std::string::npos)
-              return line.substr(b);
+            if (b == std::string::npos)
+              {
+                if (!gist.empty())
+                  break;
+                continue;
+              }
+            line = line.substr(b);
+            if (first.empty())
+              first = line;
+            if (line.rfind("Additional information:", 0) == 0)
+              additional = true;
+            else if (additional)
+              gist += (gist.empty() ? "" : " ") + line;
           }
-        return "unknown error";
+        std::string result = !gist.empty()    ? gist
+                             : !first.empty() ? first
+                                              : "unknown error";
+        // The caller's message ends with its own full stop.
+        while (!result.empty() && result.back() == '.')
+          result.pop_back();
+        return result;
       }
 
       /** The unit normal [-] of a quadrilateral face from its vertices
