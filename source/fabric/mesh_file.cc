@@ -106,6 +106,7 @@ namespace YarnImpact
     void
     MeshFile::read_mesh(const std::string &file)
     {
+      file_name              = file;
       const std::string name = "'" + file + "'";
       std::ifstream in(file);
       if (!in)
@@ -514,7 +515,7 @@ namespace YarnImpact
               else if (tag != MeshFileTags::lateral)
                 throw MeshFileError(
                   mesh_entry,
-                  "a boundary face of the mesh file has the physical tag " +
+                  "'" + file_name + "': a boundary face has the physical tag " +
                     std::to_string(tag) +
                     ", none of 1 (lateral), 2 (clamped end), 3 (free end)");
               face_ids[key] = id;

@@ -199,6 +199,8 @@ namespace YarnImpact
       void
       classify_faces(const bool clamp_warp_ends, const bool clamp_weft_ends);
 
+      /** Fabric/Mesh file, for the messages. */
+      std::string file_name;
       dealii::Triangulation<3, 3> tria;
       std::vector<unsigned int> cell_yarn;
       unsigned int yarns = 0, max_sections = 0;
