@@ -63,7 +63,8 @@
 #               directions estimated, and with each cell's mean direction:
 #               the estimated directions within 0.01 degrees of the cells'
 #               mean directions (write-patch-mesh --compare), the histories
-#               against each other (check_mesh_file.py says how closely).
+#               against each other (check_mesh_file.py says how closely);
+#               the estimated run on 2 ranks byte for byte the one on 1.
 #  sphere       the energy case struck by a sphere (Projectile/Shape) of
 #               the cylinder's diameter and mass instead: the same checks
 #               (check_history.py energy, check_symmetry.py), on 1 and 2
@@ -279,6 +280,14 @@ case $case in
       fail "estimated directions: $angle"
     fi
     /usr/bin/python3 "$here/check_mesh_file.py" generated read estimated per_cell || failures=$((failures + 1))
+    sed 's/Directory = estimated$/Directory = estimated_2/' estimated.prm > estimated_2.prm
+    run 2 estimated_2.prm
+    [ "$rc" -eq 0 ] || fail "mesh_file estimated on 2 ranks: exit $rc: $(head -c 300 stderr)"
+    if same_history estimated/history_fabric.csv estimated_2/history_fabric.csv; then
+      echo "ok     mesh_file: the estimated run on 2 ranks is the one on 1 rank, byte for byte"
+    else
+      fail "mesh_file: the estimated run on 2 ranks differs from the one on 1 rank"
+    fi
     ;;
   sphere)
     shape='subsection Projectile\n  set Shape = sphere\nend\n'
