@@ -62,8 +62,8 @@ namespace YarnImpact
      * its mesh, fibre directions, section heights and sections, each
      * cell's ply, and the energy groups 2 p (ply p's primary yarns) and
      * 2 p + 1 (its secondary ones).
-     * @param ids set to the primary yarns' list, @p plies to the plies'
-     * heights, for the set-up report
+     * @param primary_ids set to the primary yarns' list, @p ply_heights
+     * to the plies' heights, for the set-up report
      * @return the length of all yarns' centrelines [m]
      */
     double
