@@ -6,6 +6,7 @@
 
 #include <yarn_impact/core/crimped_yarn.h>
 #include <yarn_impact/fabric/fabric_model.h>
+#include <yarn_impact/fabric/mesh_file.h>
 #include <yarn_impact/fe/extra_forces.h>
 #include <yarn_impact/fe/fe_model.h>
 
@@ -446,33 +447,6 @@ namespace YarnImpact
         /** Fabric/Cone deflection threshold [m], Fabric/Yarn spacing [m]. */
         const double cone_threshold, spacing;
       };
-
-
-      /**
-       * Whether each yarn of @p patch is primary (true), the projectile's
-       * footprint on the fabric's plane at the start covering part of it,
-       * or secondary: the footprint is the strip |x - x_0| < R of the
-       * cylinder along z, the disc of radius R about (x_0, z_0) of the
-       * sphere and the flat cylinder; a yarn's is the band of its width,
-       * 2 a_z, about its centreline's position.
-       */
-      std::vector<bool>
-      primary_yarns(const WovenPatch &patch,
-                    const YarnImpact::Parameters::Projectile &projectile)
-      {
-        const double reach =
-          0.5 * projectile.diameter + patch.geometry().width_semi_axis;
-        const bool strip =
-          projectile.shape == YarnImpact::Parameters::ProjectileShape::cylinder;
-        std::vector<bool> primary(patch.n_yarns());
-        for (unsigned int id = 0; id < patch.n_yarns(); ++id)
-          primary[id] =
-            patch.is_warp(id)
-              ? strip ||
-                  std::abs(patch.position(id) - projectile.offset_z) < reach
-              : std::abs(patch.position(id) - projectile.offset_x) < reach;
-        return primary;
-      }
     } // namespace
 
 
@@ -494,78 +468,39 @@ namespace YarnImpact
       FE::Parameters p  = fe;
       p.n_axial_cells   = g.n_weft * g.cells_per_spacing;
       p.n_axial_cells += p.n_axial_cells % 2;
-      p.crimp       = FE::CrimpParameters();
-      p.mesh.create = [patch](dealii::Triangulation<3, 3> &mesh) {
-        patch->create_mesh(mesh);
-      };
-      p.mesh.section_height = [patch](const double *xyz) {
-        const dealii::Point<3> X(xyz[0], xyz[1], xyz[2]);
-        const unsigned int id    = patch->yarn_of(X);
-        const CrimpedYarn &y     = patch->yarn(id);
-        const dealii::Point<3> P = patch->to_yarn_frame(id, X);
-        const double s           = y.abscissa_of(P);
-        return (P - y.centreline(s)) * y.normal(s);
-      };
-      p.fibre_direction = [patch](const double *xyz, double *M) {
-        const dealii::Tensor<1, 3> t =
-          patch->fibre_direction(dealii::Point<3>(xyz[0], xyz[1], xyz[2]));
-        for (unsigned int d = 0; d < 3; ++d)
-          M[d] = t[d];
-      };
+      p.crimp = FE::CrimpParameters();
+      std::string ids, plies;
+      double yarn_length = 0.;
+      if (fabric.mesh_file.empty())
+        yarn_length = use_patch(patch, shared.projectile, p, ids, plies);
+      else
+        {
+          // The read mesh (doc/fabric.md section 7): one "ply", whatever
+          // the file holds.
+          g.n_plies = 1;
+          const auto file =
+            std::make_shared<const MeshFile>(fabric.mesh_file,
+                                             fabric.orientation_file,
+                                             g.clamp_warp_ends,
+                                             g.clamp_weft_ends);
+          yarn_length = use_mesh_file(file, shared.projectile, p, ids);
+        }
 
       // The surface of the whole mesh, before the FE model distributes it.
       dealii::Triangulation<3> whole;
-      patch->create_mesh(whole);
+      p.mesh.create(whole);
       const double density    = FE::with_fibre_data(*copy, p).density;
       const auto yarn_contact = std::make_shared<YarnContactForces>(
         fabric.contact,
         make_contact_surface(whole, density, {BoundaryIds::lateral}));
       p.extra_forces = yarn_contact;
 
-      // The broken yarns, by the sections of each yarn's cells; each
-      // cell's ply in the snapshots.
-      p.mesh.section = [patch](const unsigned int id, const double *xyz) {
-        return patch->section_of(id, dealii::Point<3>(xyz[0], xyz[1], xyz[2]));
-      };
-      p.mesh.sections_per_yarn =
-        std::max(g.n_warp, g.n_weft) * g.cells_per_spacing;
-      p.mesh.n_yarns         = patch->n_yarns();
-      p.mesh.material_fields = {
-        {"ply", [patch](const unsigned int id) { return patch->ply(id); }}};
-
-      // The energies of each ply's primary and secondary yarns apart:
-      // group 2 p + 0 or 1.
-      const std::vector<bool> primary =
-        primary_yarns(*patch, shared.projectile);
-      p.energy_group = [primary, patch](const unsigned int id) {
-        return 2 * patch->ply(id) + (primary[id] ? 0u : 1u);
-      };
-      p.n_energy_groups = 2 * g.n_plies;
-      std::ostringstream ids, plies;
-      for (unsigned int id = 0; id < patch->n_yarns(); ++id)
-        if (primary[id])
-          ids << (ids.tellp() > 0 ? ", " : "")
-              << (g.n_plies > 1 ? "ply " + std::to_string(patch->ply(id)) + " "
-                                : "")
-              << (patch->is_warp(id) ? "warp " : "weft ")
-              << patch->index_in_family(id);
-      plies << g.n_plies << " plies, aligned, their mid-planes at y =";
-      for (unsigned int k = 0; k < g.n_plies; ++k)
-        plies << (k > 0 ? "," : "") << " " << patch->ply_height(k) * 1e3;
-      plies << " mm (yarn ids " << patch->yarns_per_ply()
-            << " per ply, ply 0 first), a gap of "
-            << (g.ply_spacing - WovenPatch::ply_thickness(g)) * 1e3
-            << " mm between neighbouring plies' meshes";
-
-      double yarn_length = 0.;
-      for (unsigned int id = 0; id < patch->n_yarns(); ++id)
-        yarn_length += patch->yarn(id).centreline_length();
       return std::make_unique<FabricModel>(std::move(copy),
                                            p,
                                            yarn_contact,
                                            yarn_length,
-                                           ids.str(),
-                                           plies.str(),
+                                           ids,
+                                           plies,
                                            g.n_plies,
                                            fabric.cone_threshold,
                                            g.spacing,

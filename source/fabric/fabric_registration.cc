@@ -5,6 +5,7 @@
 #include <yarn_impact/core/model_registry.h>
 #include <yarn_impact/core/parameter_tools.h>
 #include <yarn_impact/fabric/fabric_model.h>
+#include <yarn_impact/fabric/mesh_file.h>
 #include <yarn_impact/fabric/woven_patch.h>
 #include <yarn_impact/fe/fe_model.h>
 
@@ -97,6 +98,23 @@ namespace YarnImpact
                             "Deflection along -y above which a point of the "
                             "yarns' surface is inside the cone, for the "
                             "history's cone fronts [m].");
+          prm.declare_entry(
+            "Mesh file",
+            "",
+            dealii::Patterns::Anything(),
+            "A Gmsh mesh (.msh) of hexahedra to run instead of the generated "
+            "patch: physical group g >= 1 makes a cell one of yarn g - 1; "
+            "physical surfaces 1 (lateral), 2 (clamped end), 3 (free end), "
+            "untagged boundary faces found by their normals "
+            "(doc/fabric.md section 7). Empty: the generated patch.");
+          prm.declare_entry(
+            "Orientation file",
+            "",
+            dealii::Patterns::Anything(),
+            "With Mesh file: each cell's fibre direction, one line per cell "
+            "in the mesh file's order, 3 numbers (a unit direction) or 24 "
+            "(one per Gauss point); '#' starts a comment. Empty: estimated "
+            "from the mesh.");
           prm.enter_subsection("Yarn contact");
           prm.declare_entry("Penalty",
                             "5e13",
@@ -153,6 +171,8 @@ namespace YarnImpact
           g.ply_spacing     = get_positive_double(prm, "Fabric", "Ply spacing");
           fabric.cone_threshold =
             get_positive_double(prm, "Fabric", "Cone deflection threshold");
+          fabric.mesh_file        = prm.get("Mesh file");
+          fabric.orientation_file = prm.get("Orientation file");
           prm.enter_subsection("Yarn contact");
           YarnContactParameters &c = fabric.contact;
           c.penalty =
@@ -178,6 +198,25 @@ namespace YarnImpact
         {
           using YarnImpact::Parameters::require;
           const WovenPatchGeometry p = patch(shared);
+          require(fabric.orientation_file.empty() || !fabric.mesh_file.empty(),
+                  "Fabric/Orientation file",
+                  "needs Fabric/Mesh file: the generated patch has its own "
+                  "fibre directions");
+          if (!fabric.mesh_file.empty())
+            {
+              // Read once here, so that --check refuses a bad file.
+              try
+                {
+                  MeshFile(fabric.mesh_file,
+                           fabric.orientation_file,
+                           p.clamp_warp_ends,
+                           p.clamp_weft_ends);
+                }
+              catch (const MeshFileError &e)
+                {
+                  require(false, e.parameter, e.what());
+                }
+            }
           std::ostringstream touch;
           touch << "= " << p.amplitude * 1e3
                 << " mm must exceed the yarn's thickness semi-axis "

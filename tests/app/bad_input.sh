@@ -28,6 +28,9 @@ expect_failure() { # name, expected text, command...
   fi
 }
 
+# The small mesh and orientation files that bad/fabric_mesh_*.prm and
+# bad/fabric_orientation_*.prm name, relative to the working folder.
+cp "$src"/bad/mesh/* .
 for prm in "$src"/bad/*.prm; do
   text=$(sed -n 's/^# expect: //p' "$prm" | head -1)
   expect_failure "$(basename "$prm")" "$text" "$exe" "$prm"

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Usage: fabric_runs.sh YARN_IMPACT SOURCE_DIR CASE
+# Usage: fabric_runs.sh YARN_IMPACT SOURCE_DIR CASE [WRITE_PATCH_MESH]
 # Runs of Model = fabric (doc/fabric.md) on small patches of the shipped
 # example's yarns (prm/fabric/km2_patch.prm), checked by check_history.py
 # or compared byte for byte. CASE:
@@ -55,6 +55,16 @@
 #               uninterrupted run's.
 #  single_warp  1 warp yarn across 5 weft yarns against Model = fe with
 #               the same crimped yarn (check_history.py single_warp).
+#  mesh_file    (needs WRITE_PATCH_MESH) the 4 x 4 patch, no failure, 3 us,
+#               a history row every 0.05 us: generated; written by
+#               write-patch-mesh and read back (Fabric/Mesh file) with the
+#               patch's directions at the Gauss points (Fabric/Orientation
+#               file); written without physical surfaces and read with the
+#               directions estimated, and with each cell's mean direction:
+#               the estimated directions within 0.01 degrees of the cells'
+#               mean directions (write-patch-mesh --compare), the histories
+#               against each other (check_mesh_file.py says how closely);
+#               the estimated run on 2 ranks byte for byte the one on 1.
 #  sphere       the energy case struck by a sphere (Projectile/Shape) of
 #               the cylinder's diameter and mass instead: the same checks
 #               (check_history.py energy, check_symmetry.py), on 1 and 2
@@ -62,6 +72,7 @@
 exe=$1
 src=$2
 case=$3
+writer=${4:-}
 here=$(cd "$(dirname "$0")" && pwd)
 . "$(dirname "$(readlink -f "$0")")/../lib.sh"
 test_begin
@@ -241,6 +252,42 @@ case $case in
     run 1 fe.prm
     [ "$rc" -eq 0 ] || fail "fe: exit $rc: $(head -c 300 stderr)"
     /usr/bin/python3 "$here/check_history.py" single_warp fabric fe || failures=$((failures + 1))
+    ;;
+  mesh_file)
+    "$writer" 4 4 8 patch || fail "write-patch-mesh 4 4 8 patch"
+    "$writer" 4 4 8 bare --no-surfaces --per-cell || fail "write-patch-mesh bare"
+    mesh='  set Mesh file = patch.msh\n  set Orientation file = patch.orientation\n'
+    bare='  set Mesh file = bare.msh\n'
+    cells='  set Mesh file = bare.msh\n  set Orientation file = bare.orientation\n'
+    for run_case in generated read estimated per_cell; do
+      case $run_case in
+        generated) extra='' ;;
+        read) extra=$mesh ;;
+        estimated) extra=$bare ;;
+        per_cell) extra=$cells ;;
+      esac
+      patch "$run_case" 4 4 3e-6 0.05e-6 "$no_failure" > "$run_case.prm"
+      sed -i "s/^  set Weft yarns = 4$/&\n$extra/" "$run_case.prm"
+      run 1 "$run_case.prm"
+      [ "$rc" -eq 0 ] || fail "mesh_file $run_case: exit $rc: $(head -c 300 stderr)"
+    done
+    angle=$("$writer" --compare bare.msh bare.orientation)
+    echo "       $angle"
+    if /usr/bin/python3 -c "import sys; sys.exit(0 if float(sys.argv[1]) < 0.01 else 1)" \
+         "$(echo "$angle" | sed 's/.*directions \([0-9.e+-]*\) degrees/\1/')"; then
+      echo "ok     estimated directions within 0.01 degrees of the cells' mean directions"
+    else
+      fail "estimated directions: $angle"
+    fi
+    /usr/bin/python3 "$here/check_mesh_file.py" generated read estimated per_cell || failures=$((failures + 1))
+    sed 's/Directory = estimated$/Directory = estimated_2/' estimated.prm > estimated_2.prm
+    run 2 estimated_2.prm
+    [ "$rc" -eq 0 ] || fail "mesh_file estimated on 2 ranks: exit $rc: $(head -c 300 stderr)"
+    if same_history estimated/history_fabric.csv estimated_2/history_fabric.csv; then
+      echo "ok     mesh_file: the estimated run on 2 ranks is the one on 1 rank, byte for byte"
+    else
+      fail "mesh_file: the estimated run on 2 ranks differs from the one on 1 rank"
+    fi
     ;;
   sphere)
     shape='subsection Projectile\n  set Shape = sphere\nend\n'

@@ -10,6 +10,7 @@
 #include <mpi.h>
 
 #include <memory>
+#include <string>
 
 namespace YarnImpact
 {
@@ -27,6 +28,12 @@ namespace YarnImpact
       /** The deflection (along -y) above which a point of the yarns'
        * surface is inside the cone, for the history's cone fronts [m]. */
       double cone_threshold = 10e-6;
+      /** `Fabric/Mesh file`: the Gmsh mesh to read instead of generating
+       * the patch (MeshFile); empty: the patch. */
+      std::string mesh_file;
+      /** `Fabric/Orientation file`: each cell's fibre direction for the
+       * read mesh; empty: estimated from the mesh. */
+      std::string orientation_file;
     };
 
     /**
@@ -49,6 +56,22 @@ namespace YarnImpact
                         const FE::Parameters &fe,
                         const FabricParameters &fabric,
                         const MPI_Comm communicator);
+
+    /**
+     * Give the FE parameters @p p the generated patch (FE::GivenMesh):
+     * its mesh, fibre directions, section heights and sections, each
+     * cell's ply, and the energy groups 2 p (ply p's primary yarns) and
+     * 2 p + 1 (its secondary ones).
+     * @param primary_ids set to the primary yarns' list, @p ply_heights
+     * to the plies' heights, for the set-up report
+     * @return the length of all yarns' centrelines [m]
+     */
+    double
+    use_patch(const std::shared_ptr<const WovenPatch> &patch,
+              const YarnImpact::Parameters::Projectile &projectile,
+              FE::Parameters &p,
+              std::string &primary_ids,
+              std::string &ply_heights);
   } // namespace Fabric
 } // namespace YarnImpact
 
