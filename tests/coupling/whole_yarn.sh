@@ -41,29 +41,9 @@ for far in continuum "fibre bars"; do
     "$exe" "${sym}_$tag.prm" > "${sym}_$tag.stdout" 2>&1 ||
       { fail "$sym, $far: exit $?"; tail -5 "${sym}_$tag.stdout"; }
   done
-  /usr/bin/python3 - "half_$tag/history_hybrid.csv" "none_$tag/history_hybrid.csv" "$far" << 'END' ||
-import csv, sys
-a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:3])
-columns = ["projectile velocity [m/s]", "contact force [N]",
-           "yarn kinetic energy [mJ]", "elastic energy [mJ]",
-           "contact energy [mJ]", "dissipated energy [mJ]",
-           "max longitudinal strain [-]"]
-ok = len(a) == len(b) == 13
-worst = (0., "", "")
-for c in columns:
-    # Relative to the column's largest value over the run.
-    scale = max(abs(float(x[c])) for x in a)
-    for x, y in zip(a, b):
-        d = abs(float(x[c]) - float(y[c])) / scale if scale > 0. else 0.
-        if d > worst[0]:
-            worst = (d, c, x["t [us]"])
-for x, y in zip(a, b):
-    ok = ok and x["failed elements"] == y["failed elements"]
-print(f"{sys.argv[3]}: whole yarn against half, largest relative "
-      f"difference {worst[0]:.2e} ({worst[1]} at {worst[2]} us), "
-      f"{len(a)} rows")
-sys.exit(0 if ok and worst[0] <= 1e-5 else 1)
-END
+  /usr/bin/python3 "$src/tests/coupling/compare_histories.py" \
+    "half_$tag/history_hybrid.csv" "none_$tag/history_hybrid.csv" \
+    "$far: whole yarn against half" ||
     fail "$far: the whole yarn's history differs from the half model's"
 done
 
