@@ -44,17 +44,7 @@ case_prm() {
   printf '  set History interval = 0.05e-6\nend\n'
 }
 
-for far in continuum "fibre bars"; do
-  tag=${far// /_}
-  for sym in half quarter; do
-    case_prm "$sym" "$far" "${sym}_$tag" > "${sym}_$tag.prm"
-    "$exe" "${sym}_$tag.prm" > "${sym}_$tag.stdout" 2>&1 ||
-      { fail "$sym, $far: exit $?"; tail -5 "${sym}_$tag.stdout"; }
-  done
-  /usr/bin/python3 "$src/tests/coupling/compare_histories.py" \
-    "half_$tag/history_hybrid.csv" "quarter_$tag/history_hybrid.csv" \
-    "$far: quarter against half" ||
-    fail "$far: the quarter model's history differs from the half model's"
-done
+. "$src/tests/coupling/run_checks.sh"
+same_motion quarter "quarter model"
 
 test_end "hybrid: quarter = half for both far fields: all passed"

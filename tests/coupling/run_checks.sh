@@ -1,6 +1,7 @@
-# Sourced by the hybrid yarn's run tests (hybrid_run.sh, fibre_bars_run.sh)
-# after tests/lib.sh (fail, same_history); they define $exe and a function
-# PRM DIR that writes the case's parameter file with its output in DIR.
+# Sourced by the hybrid yarn's run tests (hybrid_run.sh, fibre_bars_run.sh,
+# quarter_symmetry.sh, whole_yarn.sh) after tests/lib.sh (fail,
+# same_history); they define $exe, $src and the functions that write their
+# cases' parameter files.
 
 # same_on_ranks PRM N...: run the case of PRM on each number of ranks (in
 # rank folders ranksN); every history the same as on the first.
@@ -50,4 +51,24 @@ refuse() {
   if [ $rc -ne 1 ] || [ "$(wc -l < bad.stderr)" -ne 1 ] || ! grep -q "$pattern" bad.stderr; then
     fail "$name: expected exit 1 and one line naming $pattern, got $rc: $(head -c 300 bad.stderr)"
   fi
+}
+
+# same_motion SYMMETRY WHAT: the case of case_prm SYMMETRY FAR DIR (which
+# the test defines) run with half symmetry and with SYMMETRY, for each far
+# field, their histories compared by compare_histories.py (the same motion
+# within round-off); WHAT names the second model in the messages.
+same_motion() {
+  local other=$1 what=$2 far tag sym
+  for far in continuum "fibre bars"; do
+    tag=${far// /_}
+    for sym in half "$other"; do
+      case_prm "$sym" "$far" "${sym}_$tag" > "${sym}_$tag.prm"
+      "$exe" "${sym}_$tag.prm" > "${sym}_$tag.stdout" 2>&1 ||
+        { fail "$sym, $far: exit $?"; tail -5 "${sym}_$tag.stdout"; }
+    done
+    /usr/bin/python3 "$src/tests/coupling/compare_histories.py" \
+      "half_$tag/history_hybrid.csv" "${other}_$tag/history_hybrid.csv" \
+      "$far: $what against half" ||
+      fail "$far: the $what's history differs from the half model's"
+  done
 }

@@ -34,20 +34,8 @@ case_prm() {
   printf '  set History interval = 0.05e-6\nend\n'
 }
 
-for far in continuum "fibre bars"; do
-  tag=${far// /_}
-  for sym in half none; do
-    case_prm "$sym" "$far" "${sym}_$tag" > "${sym}_$tag.prm"
-    "$exe" "${sym}_$tag.prm" > "${sym}_$tag.stdout" 2>&1 ||
-      { fail "$sym, $far: exit $?"; tail -5 "${sym}_$tag.stdout"; }
-  done
-  /usr/bin/python3 "$src/tests/coupling/compare_histories.py" \
-    "half_$tag/history_hybrid.csv" "none_$tag/history_hybrid.csv" \
-    "$far: whole yarn against half" ||
-    fail "$far: the whole yarn's history differs from the half model's"
-done
-
 . "$src/tests/coupling/run_checks.sh"
+same_motion none "whole yarn"
 
 # The whole yarn with fibre bars to 0.3 us on 2 ranks, with its snapshot
 # at 0.3 us; on 1 rank stopped at row 4 and continued: the same history

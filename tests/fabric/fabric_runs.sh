@@ -88,6 +88,16 @@ patch() {
   printf '%b' "${6:-}"
 }
 
+# histories_agree A B OK FAILED: the history CSVs A and B byte for byte
+# (same_history), with OK printed as a passed check, or FAILED counted.
+histories_agree() {
+  if same_history "$1" "$2"; then
+    echo "ok     $3"
+  else
+    fail "$4"
+  fi
+}
+
 # run RANKS ARGS...: sets rc.
 run() {
   local n=$1
@@ -174,11 +184,9 @@ case $case in
     done
     /usr/bin/python3 "$here/check_history.py" energy plies_1 || failures=$((failures + 1))
     /usr/bin/python3 "$here/check_plies.py" plies plies_1 0.5e-3 0.1e-3 0.0575e-3 || failures=$((failures + 1))
-    if same_history plies_1/history_fabric.csv plies_2/history_fabric.csv; then
-      echo "ok     plies: the history on 2 ranks is the one on 1 rank, byte for byte"
-    else
-      fail "plies: the history on 2 ranks differs from the one on 1 rank"
-    fi
+    histories_agree plies_1/history_fabric.csv plies_2/history_fabric.csv \
+      "plies: the history on 2 ranks is the one on 1 rank, byte for byte" \
+      "plies: the history on 2 ranks differs from the one on 1 rank"
     ;;
   broken)
     weak='subsection Yarn\n  set Failure model = sudden\n  set Failure strain = 0.02\nend\n'
@@ -189,11 +197,9 @@ case $case in
       [ "$rc" -eq 0 ] || fail "broken on $n ranks: exit $rc: $(head -c 300 stderr)"
     done
     /usr/bin/python3 "$here/check_plies.py" broken broken_1 4 4 1e-3 8 || failures=$((failures + 1))
-    if same_history broken_1/history_fabric.csv broken_2/history_fabric.csv; then
-      echo "ok     broken: the history on 2 ranks is the one on 1 rank, byte for byte"
-    else
-      fail "broken: the history on 2 ranks differs from the one on 1 rank"
-    fi
+    histories_agree broken_1/history_fabric.csv broken_2/history_fabric.csv \
+      "broken: the history on 2 ranks is the one on 1 rank, byte for byte" \
+      "broken: the history on 2 ranks differs from the one on 1 rank"
     ;;
   ranks)
     for law in charmetant progressive linear; do
@@ -209,11 +215,9 @@ case $case in
         "${law}_1/history_fabric.csv" ||
         fail "$law: no failed cell by 3.5 us (the case no longer tests failure across ranks)"
       for n in 2 3; do
-        if same_history "${law}_1/history_fabric.csv" "${law}_$n/history_fabric.csv"; then
-          echo "ok     $law: the history on $n ranks is the one on 1 rank, byte for byte"
-        else
-          fail "$law: the history on $n ranks differs from the one on 1 rank"
-        fi
+        histories_agree "${law}_1/history_fabric.csv" "${law}_$n/history_fabric.csv" \
+          "$law: the history on $n ranks is the one on 1 rank, byte for byte" \
+          "$law: the history on $n ranks differs from the one on 1 rank"
       done
     done
     ;;
@@ -230,11 +234,9 @@ case $case in
       ls "cut_$n" | grep -q '^checkpoint_fabric' || fail "stop on $n ranks: no checkpoint"
       run $n --restart "cut_$n.prm"
       [ "$rc" -eq 0 ] || fail "restart on $n ranks: exit $rc: $(head -c 300 stderr)"
-      if same_history "ref_$n/history_fabric.csv" "cut_$n/history_fabric.csv"; then
-        echo "ok     restart on $n ranks: the history is the uninterrupted run's, byte for byte"
-      else
-        fail "restart on $n ranks: the history differs from the uninterrupted run's"
-      fi
+      histories_agree "ref_$n/history_fabric.csv" "cut_$n/history_fabric.csv" \
+        "restart on $n ranks: the history is the uninterrupted run's, byte for byte" \
+        "restart on $n ranks: the history differs from the uninterrupted run's"
     done
     ;;
   single_warp)
@@ -283,11 +285,9 @@ case $case in
     sed 's/Directory = estimated$/Directory = estimated_2/' estimated.prm > estimated_2.prm
     run 2 estimated_2.prm
     [ "$rc" -eq 0 ] || fail "mesh_file estimated on 2 ranks: exit $rc: $(head -c 300 stderr)"
-    if same_history estimated/history_fabric.csv estimated_2/history_fabric.csv; then
-      echo "ok     mesh_file: the estimated run on 2 ranks is the one on 1 rank, byte for byte"
-    else
-      fail "mesh_file: the estimated run on 2 ranks differs from the one on 1 rank"
-    fi
+    histories_agree estimated/history_fabric.csv estimated_2/history_fabric.csv \
+      "mesh_file: the estimated run on 2 ranks is the one on 1 rank, byte for byte" \
+      "mesh_file: the estimated run on 2 ranks differs from the one on 1 rank"
     ;;
   sphere)
     shape='subsection Projectile\n  set Shape = sphere\nend\n'
@@ -299,11 +299,9 @@ case $case in
     done
     /usr/bin/python3 "$here/check_history.py" energy sphere_1 || failures=$((failures + 1))
     /usr/bin/python3 "$here/check_symmetry.py" sphere_1 || failures=$((failures + 1))
-    if same_history sphere_1/history_fabric.csv sphere_2/history_fabric.csv; then
-      echo "ok     sphere: the history on 2 ranks is the one on 1 rank, byte for byte"
-    else
-      fail "sphere: the history on 2 ranks differs from the one on 1 rank"
-    fi
+    histories_agree sphere_1/history_fabric.csv sphere_2/history_fabric.csv \
+      "sphere: the history on 2 ranks is the one on 1 rank, byte for byte" \
+      "sphere: the history on 2 ranks differs from the one on 1 rank"
     ;;
   *)
     echo "unknown case $case"
