@@ -140,6 +140,8 @@ namespace YarnImpact
         o.n_eroded          = a.n_eroded + b.n_eroded;
         o.n_damaged         = b.n_damaged;
         o.cut_through       = b.cut_through;
+        o.momentum          = a.momentum + b.momentum + c.momentum + d.momentum;
+        o.extra_columns     = {o.momentum};
         if (clamp_model)
           {
             o.kinetic_energy += c.kinetic_energy;

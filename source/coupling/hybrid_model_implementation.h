@@ -107,6 +107,16 @@ namespace YarnImpact
         void
         setup(const Projectile &projectile, std::ostream &out) override;
 
+        /** The yarn's momentum along the impact direction, all parts
+         * together (Observables::momentum; the fibre bars move along x
+         * only), which with the projectile's is conserved until a wave
+         * reaches a clamp [kg m/s]. */
+        std::vector<std::string>
+        extra_column_names() const override
+        {
+          return {"yarn momentum [kg m/s]"};
+        }
+
         double
         yarn_top() const override
         {

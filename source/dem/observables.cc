@@ -95,8 +95,9 @@ namespace YarnImpact
 
         Observables o;
         // Reproducible sums: kinetic, elastic, contact, dissipated, failed,
-        // then per profile station the second moment of the fibre centres
-        // about z = 0 and its weight.
+        // the momentum along -y (each sum exact, so one more leaves the
+        // others' bits as they were), then per profile station the second
+        // moment of the fibre centres about z = 0 and its weight.
         enum : unsigned int
         {
           kinetic,
@@ -104,6 +105,7 @@ namespace YarnImpact
           contact,
           dissipated,
           failed,
+          momentum,
           second_moment
         };
         ReproducibleSum sums(second_moment + 2 * n_prof);
@@ -133,6 +135,9 @@ namespace YarnImpact
                     v2 += vc * vc;
                   }
                 sums.add(kinetic, 0.5 * m * v2);
+                sums.add(
+                  momentum,
+                  -m * kicked_velocity(chains, decomposition, spheres, i, 1));
                 sums.add(dissipated, spheres.dissipated[i]);
                 defl = std::max(defl, fibre_y0[f] - pos[3 * i + 1]);
                 sums.add(second_moment + k,
@@ -255,6 +260,7 @@ namespace YarnImpact
         o.elastic_energy    = factor * total[elastic];
         o.contact_energy    = factor * total[contact];
         o.dissipated_energy = factor * total[dissipated];
+        o.momentum          = factor * total[momentum];
         o.n_failed          = static_cast<unsigned long>(total[failed] + 0.5);
         o.max_strain        = std::max(0., buf[0]);
 

@@ -13,6 +13,9 @@
 #   largest energy balance error, the bars and both ties included, at most
 #   0.05 % of the initial energy (the projectile's deceleration is the DEM
 #   part's until the bars' waves come back, checked by hybrid_run.sh);
+# - the projectile's and the yarn's momentum along the impact direction
+#   conserved within 1e-9 of m v0 at every row (momentum_balance.py: the
+#   bars move along x only, the FE nodes carry the transverse mass);
 # - the same history on 1, 2 and 3 MPI ranks (each rank steps its own
 #   fibres' bars, the sums over fibres are in fibre order, the DEM part's
 #   sums are reproducible): byte for byte;
@@ -43,6 +46,7 @@ else
   same_on_ranks bars_prm 1
   snapshots=ranks1
   grep -E "longitudinal speed|energy error" ranks1/summary.txt
+  momentum_conserved ranks1 "fibre bars"
   restart_same bars_prm 9 ranks1/history_hybrid.csv
 fi
 

@@ -10,6 +10,9 @@
 #   6.2415e5 against 6.0476e5 m/s^2, doc/hybrid.md section 4.3), and the
 #   largest energy balance error, coupling included, at most 0.05 % of the
 #   initial energy;
+# - the projectile's and the yarn's momentum along the impact direction
+#   conserved within 1e-9 of m v0 at every row (momentum_balance.py), with
+#   and without the DEM part at the clamp;
 # - the same history on 1, 2 and 3 MPI ranks (3 is more than a 2-core
 #   machine has: oversubscribed), byte for byte, energies included (the
 #   DEM part's sums are reproducible sums);
@@ -42,6 +45,7 @@ if [ "$mode" = ranks ]; then
 fi
 same_on_ranks hybrid_prm 1
 grep -E "mean deceleration|energy error" ranks1/summary.txt
+momentum_conserved ranks1 "continuum far field"
 
 # Stopped at row 15, continued.
 restart_same hybrid_prm 15 ranks1/history_hybrid.csv
@@ -68,6 +72,7 @@ if [ $rc -ne 0 ]; then
   tail -25 clamp.stdout
 else
   grep -E "energy error" clamp/summary.txt
+  momentum_conserved clamp "clamp part"
   /usr/bin/python3 - ranks1/history_hybrid.csv clamp/history_hybrid.csv << 'END' ||
 import csv, sys
 a, b = (list(csv.reader(open(p))) for p in sys.argv[1:3])

@@ -14,6 +14,9 @@
 #   sum their forces in different orders), the
 #   failed elements equal (relative to each quantity's largest value
 #   over the run).
+# - every one of these runs conserves the projectile's and the yarn's
+#   momentum along the impact direction within 1e-9 of m v0
+#   (momentum_balance.py);
 exe=$1
 src=$2
 . "$(dirname "$(readlink -f "$0")")/../lib.sh"

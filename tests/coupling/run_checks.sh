@@ -53,7 +53,14 @@ refuse() {
   fi
 }
 
-# same_motion SYMMETRY WHAT: the case of case_prm SYMMETRY FAR DIR (which
+# momentum_conserved DIR LABEL: the projectile's and the yarn's momentum
+# along the impact direction conserved to round-off (momentum_balance.py).
+momentum_conserved() {
+  /usr/bin/python3 "$src/tests/coupling/momentum_balance.py" "$1" "$2" ||
+    fail "$2: the momentum of the projectile and the yarn is not conserved"
+}
+
+# same_motion SYMMETRY WHAT (each run's momentum checked too): the case of case_prm SYMMETRY FAR DIR (which
 # the test defines) run with half symmetry and with SYMMETRY, for each far
 # field, their histories compared by compare_histories.py (the same motion
 # within round-off); WHAT names the second model in the messages.
@@ -65,6 +72,7 @@ same_motion() {
       case_prm "$sym" "$far" "${sym}_$tag" > "${sym}_$tag.prm"
       "$exe" "${sym}_$tag.prm" > "${sym}_$tag.stdout" 2>&1 ||
         { fail "$sym, $far: exit $?"; tail -5 "${sym}_$tag.stdout"; }
+      momentum_conserved "${sym}_$tag" "$sym, $far"
     done
     /usr/bin/python3 "$src/tests/coupling/compare_histories.py" \
       "half_$tag/history_hybrid.csv" "${other}_$tag/history_hybrid.csv" \

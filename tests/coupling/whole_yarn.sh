@@ -13,6 +13,9 @@
 #   quantity's largest value over the run (the whole DEM part sums its
 #   contacts in another order than the half's, whose plane x = 0 holds
 #   half spheres), the failed elements equal;
+# - every one of these runs conserves the projectile's and the yarn's
+#   momentum along the impact direction within 1e-9 of m v0
+#   (momentum_balance.py);
 # - the whole yarn with fibre bars to 0.3 us: its history on 2 ranks byte
 #   for byte that of 1 rank stopped by SIGTERM and continued with
 #   --restart (every part's checkpoint);

@@ -146,8 +146,9 @@ namespace YarnImpact
      * The first damaged cell is the FE's first fibre break. */
     unsigned long n_damaged = 0;
     /** Momentum of the yarn in the impact direction (-y), the sum over
-     * its nodes of mass times velocity [kg m/s]; 0 where the model does
-     * not compute it (the DEM). */
+     * its nodes or spheres of mass times velocity (the masses weighted as
+     * the kinetic energy's, so that a hybrid's parts add up), whole yarn
+     * [kg m/s]. */
     double momentum = 0.;
     /** Kinetic and strain energy of each group of cells of a model that
      * sorts them (the FE model given FE::Parameters::energy_group) [J];
