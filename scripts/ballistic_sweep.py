@@ -13,7 +13,7 @@ Usage:
       [--velocities 60,120,200,300,450,600,800,1000,1200]
       [--dem-velocities 300,450,600,1000]
       [--hybrid-velocities 300,450,600,1000] [--tolerance 5]
-      [--dem-tolerance 10] [--fabric-velocities 150,250,350,500]
+      [--dem-tolerance 10] [--fabric-velocities 200,300,400,550]
       [--fabric-tolerance 10] [--fabric-prm prm/fabric/km2_ply_v50.prm]
       [--no-bisection] [--plots-only]
 
@@ -435,7 +435,7 @@ def main():
     p.add_argument("--dem-tolerance", type=positive(float), default=10.)
     # A few velocities of the ply (one run is a minute or two on 2 ranks).
     p.add_argument("--fabric-velocities", type=velocity_list,
-                   default="150,250,350,500")
+                   default="200,300,400,550")
     p.add_argument("--fabric-tolerance", type=positive(float), default=10.)
     p.add_argument("--fabric-prm", default=os.path.join(ROOT, MODELS[
         "fabric"][1]))
