@@ -10,6 +10,8 @@ yarns (the yarns under the projectile's face at the start, from the run's
 set-up report) and the projectile still moves on (velocity > 0). The count
 is of yarns with a broken section, not of which: a secondary yarn broken
 while a primary one holds would count, which the table's broken yarns show.
+A run that stops before its end time (a numerical failure) counts as
+perforated if its primary yarns broke before; otherwise it is an error.
 
 V50: the lowest impact velocity that perforates, by bisection between the
 highest velocity that does not and the lowest that does, to the tolerance.
@@ -99,6 +101,12 @@ def measure(out, log, velocity, wall):
     report = setup_report(log)
     n = report["primary"]
     broken_at = next((t[i] for i in range(len(t)) if broken[i] >= n), None)
+    if not os.path.exists(os.path.join(out, "summary.txt")) and \
+            broken_at is None:
+        # Stopped early (a numerical failure, a signal) before its primary
+        # yarns broke: neither perforated nor not.
+        raise Failure("the run in %s stopped at %.3f us, before its end "
+                      "time, without perforating: see %s" % (out, t[-1], log))
     return {"velocity": velocity, "residual": v[-1],
             "absorbed": ke[0] - ke[-1], "broken": broken[-1], "primary": n,
             "perforated": broken[-1] >= n and v[-1] > 0.,
@@ -157,7 +165,8 @@ def lambert_jonas(results, v50):
 def membrane_estimate(base, report):
     """The ply's V50 by the membrane model of Phoenix and Porwal (Int. J.
     Solids Struct. 40 (2003) 6723-6765) in the form restated by Meng et
-    al. (Extreme Mech. Lett. 15 (2017) 70-77, their Eqs. 1, 3, A.1, A.2):
+    al. (Extreme Mech. Lett., 2017, doi:10.1016/j.eml.2017.06.001, their
+    Eqs. 1, 3 and A.2):
     V50 = sqrt(2) (1 + Gamma) c (eps_b / K)^(3/4), Gamma = rho_A A_p / m_p,
     with the strain concentration K at the projectile's rim closed here
     (doc/fabric.md section 6): the cone's material picks up the velocity
