@@ -494,10 +494,11 @@ def fabric_series(args):
         fabric_ballistics.bisect_v50(run, results, args.fabric_tolerance)
     fit = fabric_ballistics.lambert_jonas(results, v50)
     estimate = fabric_ballistics.membrane_estimate(base, results[0]["report"])
-    print("  fabric: V50 %s (between %s and %s m/s); membrane estimate "
-          "(Phoenix-Porwal) %.0f m/s" % (
-              "%.1f m/s" % v50 if v50 else "not bracketed", lo, hi,
-              estimate["v50"]), flush=True)
+    print("  fabric: V50 %s; membrane estimate (Phoenix-Porwal) %.0f m/s"
+          % ("not sought (--no-bisection)" if args.no_bisection else
+             "%.1f m/s (between %s and %s m/s)" % (v50, lo, hi) if v50 else
+             "not bracketed (between %s and %s m/s)" % (lo, hi),
+             estimate["v50"]), flush=True)
     try:
         fabric_ballistics.write(args.out, results, v50, (lo, hi), fit,
                                 estimate)
