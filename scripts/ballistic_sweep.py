@@ -3,7 +3,9 @@
 and linear laws with the paper's sudden failure, and the Charmetant law with
 the progressive failure identified from the DEM), the DEM and the hybrid yarn, each model's critical
 velocity by bisection, Smith's critical velocity, a CSV and plots
-(doc/ballistics.md).
+(doc/ballistics.md); and one woven ply (model `fabric`): its residual
+velocity, its V50 by bisection, the Lambert-Jonas fit and the membrane
+estimate of Phoenix and Porwal (doc/fabric.md section 6).
 
 Usage:
   python3 scripts/ballistic_sweep.py [--build build] [--out results/ballistics]
@@ -11,7 +13,8 @@ Usage:
       [--velocities 60,120,200,300,450,600,800,1000,1200]
       [--dem-velocities 300,450,600,1000]
       [--hybrid-velocities 300,450,600,1000] [--tolerance 5]
-      [--dem-tolerance 10]
+      [--dem-tolerance 10] [--fabric-velocities 200,300,400,550]
+      [--fabric-tolerance 10] [--fabric-prm prm/fabric/km2_ply_v50.prm]
       [--no-bisection] [--plots-only]
 
 Each run is the paper's case (prm/km2_120ms_fe.prm, the linear law of
@@ -21,6 +24,12 @@ prm/km2_120ms_fe_progressive.prm, model `progressive`, not in the default
 fibre bars of prm/hybrid/km2_600ms_fibre_bars.prm, model `hybrid`, not in
 the default --models) at another impact velocity,
 without snapshots, stopping 2 us after the yarn is cut through or at 40 us.
+Model `fabric` (not in the default --models; on --np ranks) runs the ply of
+--fabric-prm at --fabric-velocities to that prm's own End time, and writes
+fabric_ballistics.csv, fabric_v50.csv and fabric_residual_velocity.png:
+perforated when at the end every primary yarn is broken and the projectile
+moves on; V50, the lowest velocity that perforates, by bisection to
+--fabric-tolerance (scripts/fabric_ballistics.py).
 Runs already done (their summary.txt exists) are reused, so an interrupted
 sweep goes on where it stopped: a run's folder is named after its exact
 velocity and end time (120 and 120.4 m/s are two runs), and a run is reused
@@ -53,6 +62,7 @@ import subprocess
 import sys
 import time
 
+import fabric_ballistics
 import folder_lock
 import script_errors
 
@@ -73,13 +83,15 @@ MODELS = {
     "progressive": ("fe", "prm/km2_120ms_fe_progressive.prm", ""),
     "dem": ("dem", "prm/km2_120ms_dem.prm", ""),
     "hybrid": ("hybrid", "prm/hybrid/km2_600ms_fibre_bars.prm", ""),
+    "fabric": ("fabric", fabric_ballistics.BASE, ""),
 }
 LABELS = {"charmetant": "FE, Charmetant law",
           "progressive": "FE, Charmetant law, progressive failure",
           "linear": "FE, linear TI law",
-          "dem": "DEM", "hybrid": "hybrid, DEM |x| <= 4.89 mm, fibre bars"}
+          "dem": "DEM", "hybrid": "hybrid, DEM |x| <= 4.89 mm, fibre bars",
+          "fabric": "one woven ply, flat cylinder"}
 # The models run on MPI ranks (--np); the FE runs on one.
-PARALLEL_KINDS = ("dem", "hybrid")
+PARALLEL_KINDS = ("dem", "hybrid", "fabric")
 
 
 def smith_critical_velocity(eps=FAILURE_STRAIN, E=FIBRE_MODULUS, rho=DENSITY):
@@ -112,9 +124,17 @@ def run_name(model, velocity, end_time):
     return "%s_%sms_%ss" % (model, exact(velocity), exact(end_time))
 
 
+def base_prm(model):
+    """The prm a model's runs include."""
+    return os.path.join(ROOT, MODELS[model][1])
+
+
 def case_prm(model, velocity, end_time, out):
     """The prm text of a run (its Output/Directory @p out)."""
     kind, base, extra = MODELS[model]
+    if kind == "fabric":  # to the base's own End time (@p end_time)
+        return fabric_ballistics.case_prm(base_prm(model), velocity, out,
+                                          exact)
     return ("include %s\n%s" % (os.path.join(ROOT, base), extra) +
             "subsection Projectile\n  set Initial velocity = %s\nend\n"
             % exact(velocity) +
@@ -140,7 +160,7 @@ def sha256_file(path):
 def run_key(executable_hash, model, prm_text):
     """What a run's results depend on: the build, the generated prm and the
     prm it includes."""
-    base = os.path.join(ROOT, MODELS[model][1])
+    base = base_prm(model)
     return ("executable %s\nprm %s\nbase %s\n" %
             (executable_hash, hashlib.sha256(prm_text.encode()).hexdigest(),
              sha256_file(base)))
@@ -188,17 +208,32 @@ def run_case(args, model, velocity, end_time):
         except OSError as e:
             raise Failure("cannot run %s: %s" % (command[0],
                                                  e.strerror or e))
+        wall = time.time() - start
         print("  %-10s %6s m/s to %4.1f us: exit %d, %.0f s" %
-              (model, "%g" % velocity, end_time * 1e6, rc,
-               time.time() - start), flush=True)
+              (model, "%g" % velocity, end_time * 1e6, rc, wall), flush=True)
         if os.path.exists(os.path.join(out, "summary.txt")):
             try:
                 with open(key_file, "w") as f:
                     f.write(key)
+                with open(os.path.join(args.out, name + ".wall"), "w") as f:
+                    f.write("%.1f\n" % wall)
             except OSError as e:
                 raise Failure("cannot write %s: %s" % (key_file,
                                                        e.strerror or e))
+    if kind == "fabric":
+        return fabric_ballistics.measure(
+            out, os.path.join(args.out, name + ".log"), velocity,
+            wall_time(os.path.join(args.out, name + ".wall")))
     return measure(out, kind, velocity)
+
+
+def wall_time(path):
+    """The wall time [s] the sweep measured for a run (None if unknown)."""
+    try:
+        with open(path) as f:
+            return float(f.read())
+    except (OSError, ValueError, UnicodeDecodeError):
+        return None
 
 
 def measure(out, kind, velocity):
@@ -398,9 +433,18 @@ def main():
     p.add_argument("--end-time", type=positive(float), default=40e-6)
     p.add_argument("--tolerance", type=positive(float), default=5.)
     p.add_argument("--dem-tolerance", type=positive(float), default=10.)
+    # A few velocities of the ply (one run is a minute or two on 2 ranks).
+    p.add_argument("--fabric-velocities", type=velocity_list,
+                   default="200,300,400,550")
+    p.add_argument("--fabric-tolerance", type=positive(float), default=10.)
+    p.add_argument("--fabric-prm", default=os.path.join(ROOT, MODELS[
+        "fabric"][1]))
     p.add_argument("--no-bisection", action="store_true")
     args = p.parse_args()
     args.out = os.path.abspath(args.out)
+    if not os.path.isfile(args.fabric_prm):
+        raise Failure("--fabric-prm %s is not a file" % args.fabric_prm)
+    MODELS["fabric"] = ("fabric", os.path.abspath(args.fabric_prm), "")
     check_setup(args)
     t_r = reflection_time()
     smith = smith_critical_velocity()
@@ -409,6 +453,9 @@ def main():
     start = time.time()
     table, critical = {}, {}
     for model in args.models:
+        if model == "fabric":
+            fabric_series(args)
+            continue
         velocities = {"dem": args.dem_velocities,
                       "hybrid": args.hybrid_velocities}.get(model,
                                                            args.velocities)
@@ -421,6 +468,9 @@ def main():
                   (model, "%.1f m/s" % critical[model]
                    if critical[model] else "not bracketed", lo, hi),
                   flush=True)
+    if not table:
+        print("Wrote the fabric series in %.0f s" % (time.time() - start))
+        return 0
     write_tables(args, table, critical, smith, t_r)
     try:
         plot(args, table, critical, smith)
@@ -429,6 +479,34 @@ def main():
                       % e)
     print("Wrote %s/ballistics.csv, critical_velocities.csv and 4 PNGs in "
           "%.0f s" % (args.out, time.time() - start))
+
+
+def fabric_series(args):
+    """The ply at --fabric-velocities, its V50 by bisection, the
+    Lambert-Jonas fit and the membrane estimate (fabric_ballistics.py)."""
+    base = base_prm("fabric")
+    end_time = fabric_ballistics.prm_number(base, "End time")
+
+    def run(v):
+        return run_case(args, "fabric", v, end_time)
+    results = [run(v) for v in args.fabric_velocities]
+    v50, lo, hi = (None, None, None) if args.no_bisection else \
+        fabric_ballistics.bisect_v50(run, results, args.fabric_tolerance)
+    fit = fabric_ballistics.lambert_jonas(results, v50)
+    estimate = fabric_ballistics.membrane_estimate(base, results[0]["report"])
+    print("  fabric: V50 %s; membrane estimate (Phoenix-Porwal) %.0f m/s"
+          % ("not sought (--no-bisection)" if args.no_bisection else
+             "%.1f m/s (between %s and %s m/s)" % (v50, lo, hi) if v50 else
+             "not bracketed (between %s and %s m/s)" % (lo, hi),
+             estimate["v50"]), flush=True)
+    try:
+        fabric_ballistics.write(args.out, results, v50, (lo, hi), fit,
+                                estimate)
+    except ImportError as e:
+        raise Failure("cannot draw the fabric plot (%s)" % e)
+    except OSError as e:
+        raise Failure("cannot write the fabric tables in %s: %s"
+                      % (args.out, e.strerror or e))
 
 
 def write_tables(args, table, critical, smith, t_r):

@@ -1,6 +1,6 @@
 // write-patch-mesh: the generated woven patch (Fabric::WovenPatch) written
 // as a Gmsh mesh and an orientation file for `Fabric/Mesh file` and
-// `Fabric/Orientation file` (doc/fabric.md section 7), and the largest
+// `Fabric/Orientation file` (doc/fabric.md section 8), and the largest
 // angle between a mesh's estimated fibre directions and an orientation
 // file's.
 //

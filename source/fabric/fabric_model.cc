@@ -475,7 +475,7 @@ namespace YarnImpact
         yarn_length = use_patch(patch, shared.projectile, p, ids, plies);
       else
         {
-          // The read mesh (doc/fabric.md section 7): one "ply", whatever
+          // The read mesh (doc/fabric.md section 8): one "ply", whatever
           // the file holds.
           g.n_plies = 1;
           const auto file =

@@ -106,7 +106,7 @@ namespace YarnImpact
             "patch: physical group g >= 1 makes a cell one of yarn g - 1; "
             "physical surfaces 1 (lateral), 2 (clamped end), 3 (free end), "
             "untagged boundary faces found by their normals "
-            "(doc/fabric.md section 7). Empty: the generated patch.");
+            "(doc/fabric.md section 8). Empty: the generated patch.");
           prm.declare_entry(
             "Orientation file",
             "",

@@ -1,5 +1,5 @@
 // A fabric's mesh read from a Gmsh file (`Fabric/Mesh file`,
-// doc/fabric.md section 7): the yarns, fibre directions, clamps and
+// doc/fabric.md section 8): the yarns, fibre directions, clamps and
 // sections that the generated patch (WovenPatch) gives from its geometry,
 // found here from the file and the mesh.
 

@@ -1,5 +1,5 @@
 // The read mesh (MeshFile) given to the FE model in place of the
-// generated patch (doc/fabric.md section 7).
+// generated patch (doc/fabric.md section 8).
 
 #include <yarn_impact/fabric/mesh_file.h>
 

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Checks of the fabric run on a mesh read from a file (fabric_runs.sh
-mesh_file, doc/fabric.md section 7). Prints one line per check, "ok" or
+mesh_file, doc/fabric.md section 8). Prints one line per check, "ok" or
 "FAILED", and exits 1 if one failed.
 
   check_mesh_file.py GENERATED READ ESTIMATED PER_CELL

@@ -19,7 +19,7 @@ namespace YarnImpact
 {
   namespace Fabric
   {
-    /** Physical surface tags of a mesh file (doc/fabric.md section 7): a
+    /** Physical surface tags of a mesh file (doc/fabric.md section 8): a
      * boundary face tagged so keeps its role; an untagged one (tag 0) is
      * classified by its normal against its cell's fibre direction. */
     namespace MeshFileTags
@@ -48,7 +48,7 @@ namespace YarnImpact
 
     /**
      * A fabric's mesh read from a Gmsh file (`Fabric/Mesh file`,
-     * doc/fabric.md section 7) by deal.II's GridIn: hexahedra whose
+     * doc/fabric.md section 8) by deal.II's GridIn: hexahedra whose
      * physical group g >= 1 makes them cells of yarn g - 1 (the material
      * id), the fibre direction of every cell read from an orientation
      * file (one line per cell in the file's order: one unit direction
