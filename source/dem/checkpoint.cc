@@ -207,6 +207,10 @@ namespace YarnImpact
             in.get(B.search_displacement_sum);
             in.get(B.r2_search);
             in.get(B.r2_search_fast);
+            // The cell grid of the build is not stored (derived data): the
+            // one the set-up made is of other positions, and the next
+            // partial search makes it again from the build positions.
+            B.has_grid = false;
           }
         in.get_same_size(station_block, "block of each cross-section");
         in.get(n_rebuilds);

@@ -45,6 +45,7 @@ namespace YarnImpact
         B.stale     = false;
         B.halo_grew = false;
         B.searched  = false; // the build covers every sphere
+        B.has_grid  = false;
         // The spheres of the build: rows and halo; the rows of the list
         // being replaced.
         const std::size_t old_b = B.row_sphere_begin, old_e = B.row_sphere_end;
@@ -498,6 +499,24 @@ namespace YarnImpact
                   mirror_tangential_displacement[3 * p + c] =
                     mirror_tangential_displacement_old[3 * q + c];
               }
+          }
+
+        // The partial searches look up the spheres that are not fast in
+        // this build's cell grid: the block keeps it (exchanged with the
+        // scratch, not copied).
+        if (prm.partial_search_fraction > 0.)
+          {
+            B.grid_x0      = xmin;
+            B.grid_x_slack = 0.;
+            std::swap(B.grid_y0, bin_y0);
+            std::swap(B.grid_z0, bin_z0);
+            std::swap(B.grid_ic, bin_ic);
+            std::swap(B.grid_ny, bin_ny);
+            std::swap(B.grid_nz, bin_nz);
+            std::swap(B.grid_cell_off, cell_off);
+            std::swap(B.grid_cell_start, cell_start);
+            std::swap(B.grid_cell_sphere, cell_sphere);
+            B.has_grid = true;
           }
       }
     } // namespace internal

@@ -3,7 +3,10 @@
 // fails, only its spheres that moved farther than a threshold since the
 // build are searched again, among all the block's spheres at their current
 // positions; the pairs of two other spheres keep the build's lists and
-// criterion.
+// criterion. The work follows the fast spheres: the others are looked up
+// in the build's cell grid (they are within the threshold of where their
+// bin's reference displacement puts them), the fast ones in a grid of
+// their own, and the lists are merged in one pass in the order of a build.
 
 #include <yarn_impact/dem/neighbour_lists.h>
 
@@ -22,13 +25,16 @@ namespace YarnImpact
       {
         constexpr double infinity = std::numeric_limits<double>::infinity();
 
-        /** A pair of a row being merged, with its tangential history. */
-        struct RowEntry
+        /** The key of a cell (cx, cy, cz) >= 0 of the fast spheres' grid,
+         * in the order of cx, cy, cz (so that the cells cz - 1 to cz + 1
+         * of a column are one run of keys). */
+        inline std::uint64_t
+        fast_key(const long cx, const long cy, const long cz)
         {
-          std::uint32_t j;
-          float w;
-          double xi_t[3];
-        };
+          return (static_cast<std::uint64_t>(cx) << 42) |
+                 (static_cast<std::uint64_t>(cy) << 21) |
+                 static_cast<std::uint64_t>(cz);
+        }
 
         /** A mirror pair being merged, with its tangential history. */
         struct MirrorEntry
@@ -37,6 +43,90 @@ namespace YarnImpact
           double xi_t[3];
         };
       } // namespace
+
+
+      template <typename F>
+      void
+      NeighbourLists::for_each_near(const ListBlock &B,
+                                    const double q[3],
+                                    const double slow_reach,
+                                    const F &f) const
+      {
+        // Spheres that are not fast: j lies within slow_reach of q - D_b
+        // in the build's grid if it is now within the cut-off of q, D_b
+        // the reference of its bin b. Over the bins that hold such spheres
+        // x0 + b h + D_b,x grows with b (consecutive references differ by
+        // at most g < skin < h), so those within reach of q are a run.
+        const double h   = cutoff;
+        const auto below = [&](const std::uint32_t b) {
+          // Bin b lies wholly above q's reach.
+          return q[0] - B.bin_mean_displacement[3 * b] + slow_reach <
+                 B.grid_x0 - B.grid_x_slack + b * h;
+        };
+        const auto above = [&](const std::uint32_t b) {
+          return q[0] - B.bin_mean_displacement[3 * b] - slow_reach >
+                 B.grid_x0 + (b + 1) * h;
+        };
+        auto it =
+          std::partition_point(slow_bins.begin(), slow_bins.end(), above);
+        for (; it != slow_bins.end() && !below(*it); ++it)
+          {
+            const std::uint32_t b = *it;
+            if (above(b))
+              continue;
+            const double qy = q[1] - B.bin_mean_displacement[3 * b + 1],
+                         qz = q[2] - B.bin_mean_displacement[3 * b + 2];
+            const double ic = B.grid_ic[b];
+            const long ny = B.grid_ny[b], nz = B.grid_nz[b];
+            const long y0 = std::max(0l,
+                                     static_cast<long>(std::floor(
+                                       (qy - slow_reach - B.grid_y0[b]) * ic)));
+            const long y1 = std::min(ny - 1,
+                                     static_cast<long>(std::floor(
+                                       (qy + slow_reach - B.grid_y0[b]) * ic)));
+            const long z0 = std::max(0l,
+                                     static_cast<long>(std::floor(
+                                       (qz - slow_reach - B.grid_z0[b]) * ic)));
+            const long z1 = std::min(nz - 1,
+                                     static_cast<long>(std::floor(
+                                       (qz + slow_reach - B.grid_z0[b]) * ic)));
+            if (z0 > z1)
+              continue;
+            for (long r = y0; r <= y1; ++r)
+              {
+                const std::uint32_t row = B.grid_cell_off[b] + r * nz;
+                for (std::uint32_t p = B.grid_cell_start[row + z0];
+                     p < B.grid_cell_start[row + z1 + 1];
+                     ++p)
+                  {
+                    const std::uint32_t j = B.grid_cell_sphere[p];
+                    if (!B.fast[j - B.row_sphere_begin])
+                      f(j);
+                  }
+              }
+          }
+        // Fast spheres: cubic cells of the cut-off at their current
+        // positions, the 3 x 3 x 3 around q.
+        long c[3];
+        for (unsigned int d = 0; d < 3; ++d)
+          c[d] = static_cast<long>(std::floor((q[d] - fast_origin[d]) / h));
+        for (long cx = c[0] - 1; cx <= c[0] + 1; ++cx)
+          for (long cy = c[1] - 1; cy <= c[1] + 1; ++cy)
+            {
+              if (cx < 0 || cy < 0 || c[2] + 1 < 0)
+                continue;
+              const std::uint64_t k0 = fast_key(cx, cy, std::max(0l, c[2] - 1)),
+                                  k1 = fast_key(cx, cy, c[2] + 1);
+              auto p                 = std::lower_bound(
+                fast_cells.begin(),
+                fast_cells.end(),
+                k0,
+                [](const std::pair<std::uint64_t, std::uint32_t> &a,
+                   const std::uint64_t v) { return a.first < v; });
+              for (; p != fast_cells.end() && p->first <= k1; ++p)
+                f(p->second);
+            }
+      }
 
 
       bool
@@ -50,7 +140,7 @@ namespace YarnImpact
             B.n_bins == 0)
           return false;
         // Cross-sections that joined the halo: their spheres are fast (the
-        // build's criterion knows nothing of them).
+        // build's criterion, its counts and its grid know nothing of them).
         const std::size_t sb = B.row_sphere_begin;
         if (!B.searched)
           B.fast.assign(B.halo_sphere_end - sb, 0);
@@ -102,9 +192,16 @@ namespace YarnImpact
             }
           return r2;
         };
+
+        // One pass over the build's spheres: the new fast ones, and the
+        // x-range of all for the bins of this search.
         std::size_t n_fast = 0;
+        double xmin = infinity, xmax = -infinity;
         for (std::size_t k = 0; k < n; ++k)
           {
+            const std::size_t i = sb + k;
+            xmin                = std::min(xmin, x[3 * i]);
+            xmax                = std::max(xmax, x[3 * i]);
             if (!B.fast[k] && relative2(k) > tau2)
               B.fast[k] = 1;
             n_fast += B.fast[k];
@@ -135,11 +232,11 @@ namespace YarnImpact
         // Mirror pairs in x = 0 measure from bin 0, which must keep spheres.
         if (B.holds_plane && B.bin_count[0] == 0)
           return false;
-        double r2 = 0.;
+        double r2_slow = 0.;
         for (std::size_t k = 0; k < n; ++k)
           if (!B.fast[k])
-            r2 = std::max(r2, relative2(k));
-        if (!(2. * std::sqrt(r2) < room()))
+            r2_slow = std::max(r2_slow, relative2(k));
+        if (!(2. * std::sqrt(r2_slow) < room()))
           return false;
         std::fill(B.bin_displacement_sum.begin(),
                   B.bin_displacement_sum.end(),
@@ -147,16 +244,12 @@ namespace YarnImpact
         B.r2_max = 0.;
         ++n_partial;
         partial_spheres += n_fast;
+        if (!B.has_grid)
+          make_build_grid(B);
 
         // The criterion of this search: bins along x over all the build's
         // spheres at their current positions, references 0.
-        B.searched  = true;
-        double xmin = infinity, xmax = -infinity;
-        for (std::size_t i = sb; i < se; ++i)
-          {
-            xmin = std::min(xmin, x[3 * i]);
-            xmax = std::max(xmax, x[3 * i]);
-          }
+        B.searched = true;
         const unsigned int n_bins =
           static_cast<unsigned int>((xmax - xmin) / cutoff) + 1;
         B.n_bins_search = n_bins;
@@ -166,6 +259,11 @@ namespace YarnImpact
         B.r2_search = B.r2_search_fast = 0.;
         B.pos_search.resize(3 * n);
         B.bin_of_search.resize(n);
+        // The fast spheres (by their cells' keys below) and the lowest
+        // corner of their grid.
+        fast_cells.clear();
+        for (unsigned int d = 0; d < 3; ++d)
+          fast_origin[d] = infinity;
         for (std::size_t k = 0; k < n; ++k)
           {
             const std::size_t i = sb + k;
@@ -177,95 +275,33 @@ namespace YarnImpact
             ++B.bin_count_search[b];
             for (unsigned int c = 0; c < 3; ++c)
               B.pos_search[3 * k + c] = static_cast<float>(x[3 * i + c]);
+            if (B.fast[k])
+              {
+                fast_cells.emplace_back(0, i);
+                for (unsigned int d = 0; d < 3; ++d)
+                  fast_origin[d] = std::min(fast_origin[d], x[3 * i + d]);
+              }
           }
-        // A (y, z) grid of cells no smaller than the cut-off in each bin,
-        // as in the build.
-        bin_y0.assign(n_bins, infinity);
-        bin_z0.assign(n_bins, infinity);
-        std::vector<double> &y1 = cell_y, &z1 = cell_z; // scratch
-        y1.assign(n_bins, -infinity);
-        z1.assign(n_bins, -infinity);
-        for (std::size_t k = 0; k < n; ++k)
+
+        // The grid of the fast spheres at their current positions (cubic
+        // cells of the cut-off), and the build's bins that keep spheres.
+        for (auto &fc : fast_cells)
           {
-            const std::size_t i   = sb + k;
-            const std::uint32_t b = B.bin_of_search[k];
-            bin_y0[b]             = std::min(bin_y0[b], x[3 * i + 1]);
-            y1[b]                 = std::max(y1[b], x[3 * i + 1]);
-            bin_z0[b]             = std::min(bin_z0[b], x[3 * i + 2]);
-            z1[b]                 = std::max(z1[b], x[3 * i + 2]);
+            long c[3];
+            for (unsigned int d = 0; d < 3; ++d)
+              c[d] = static_cast<long>(
+                std::floor((x[3 * fc.second + d] - fast_origin[d]) / cutoff));
+            fc.first = fast_key(c[0], c[1], c[2]);
           }
-        bin_ic.resize(n_bins);
-        bin_ny.resize(n_bins);
-        bin_nz.resize(n_bins);
-        cell_off.assign(n_bins + 1, 0);
-        for (unsigned int b = 0; b < n_bins; ++b)
-          {
-            if (B.bin_count_search[b] == 0)
-              bin_y0[b] = y1[b] = bin_z0[b] = z1[b] = 0.;
-            double c = cutoff;
-            while ((y1[b] - bin_y0[b]) / c * (z1[b] - bin_z0[b]) / c >
-                   16. * B.bin_count_search[b] + 64.)
-              c *= 2.;
-            bin_ic[b] = 1. / c;
-            bin_ny[b] = static_cast<std::uint32_t>((y1[b] - bin_y0[b]) / c) + 1;
-            bin_nz[b] = static_cast<std::uint32_t>((z1[b] - bin_z0[b]) / c) + 1;
-            cell_off[b + 1] = cell_off[b] + bin_ny[b] * bin_nz[b];
-          }
-        std::vector<std::uint32_t> &cell_of = near_sphere; // scratch
-        cell_of.resize(n);
-        cell_start.assign(cell_off[n_bins] + 1, 0);
-        for (std::size_t k = 0; k < n; ++k)
-          {
-            const std::size_t i   = sb + k;
-            const std::uint32_t b = B.bin_of_search[k];
-            const auto cy         = static_cast<std::uint32_t>(
-              (x[3 * i + 1] - bin_y0[b]) * bin_ic[b]);
-            const auto cz = static_cast<std::uint32_t>(
-              (x[3 * i + 2] - bin_z0[b]) * bin_ic[b]);
-            cell_of[k] = cell_off[b] + std::min(cy, bin_ny[b] - 1) * bin_nz[b] +
-                         std::min(cz, bin_nz[b] - 1);
-            ++cell_start[cell_of[k] + 1];
-          }
-        for (std::uint32_t c = 0; c < cell_off[n_bins]; ++c)
-          cell_start[c + 1] += cell_start[c];
-        cell_sphere.resize(n);
-        {
-          std::vector<std::uint32_t> fill(cell_start.begin(),
-                                          cell_start.end() - 1);
-          for (std::size_t k = 0; k < n; ++k)
-            cell_sphere[fill[cell_of[k]]++] = sb + k;
-        }
-        // Every sphere of bins b0 to b1 whose cell is in the 3 x 3 block
-        // around (py, pz): all those closer than the cut-off in y and z.
-        const auto visit = [&](const double py,
-                               const double pz,
-                               const unsigned int b0,
-                               const unsigned int b1,
-                               const auto &f) {
-          for (unsigned int bb = b0; bb <= b1; ++bb)
-            {
-              if (B.bin_count_search[bb] == 0)
-                continue;
-              const long cy =
-                static_cast<long>(std::floor((py - bin_y0[bb]) * bin_ic[bb]));
-              const long cz =
-                static_cast<long>(std::floor((pz - bin_z0[bb]) * bin_ic[bb]));
-              const long ny = bin_ny[bb], nz = bin_nz[bb];
-              const long c0 = std::max(0l, cz - 1),
-                         c1 = std::min(nz - 1, cz + 1);
-              if (c0 > c1)
-                continue;
-              for (long r = std::max(0l, cy - 1); r <= std::min(ny - 1, cy + 1);
-                   ++r)
-                {
-                  const std::uint32_t row = cell_off[bb] + r * nz;
-                  for (std::uint32_t q = cell_start[row + c0];
-                       q < cell_start[row + c1 + 1];
-                       ++q)
-                    f(cell_sphere[q]);
-                }
-            }
-        };
+        std::sort(fast_cells.begin(), fast_cells.end());
+        slow_bins.clear();
+        for (unsigned int b = 0; b < B.n_bins; ++b)
+          if (B.bin_count[b] > 0)
+            slow_bins.push_back(b);
+        // The others are within sqrt(r2_slow) < tau of their bin's
+        // reference (the new one), the grid's positions within the rounding
+        // of the build positions (margin).
+        const double slow_reach = cutoff + std::sqrt(r2_slow) + 2. * margin;
 
         // The pairs of each fast sphere i with every sphere of the build
         // closer than the cut-off (a pair of two fast spheres once, from
@@ -290,20 +326,16 @@ namespace YarnImpact
                                   found_mirror);
         };
         const std::vector<double> &zmask = chains.zmask;
-        for (std::size_t k = 0; k < n; ++k)
+        for (const auto &fc : fast_cells)
           {
-            if (!B.fast[k])
-              continue;
-            const std::size_t i   = sb + k;
-            const std::uint32_t b = B.bin_of_search[k];
-            const unsigned int b0 = (b > 0 ? b - 1 : 0),
-                               b1 = std::min(b + 1, n_bins - 1);
-            const bool i_owned    = owned(i);
+            const std::size_t i = fc.second;
+            const bool i_owned  = owned(i);
             // Listed once: from the lower of two fast spheres.
             const auto other = [&](const std::size_t j) {
               return !(B.fast[j - sb] && j < i);
             };
-            visit(x[3 * i + 1], x[3 * i + 2], b0, b1, [&](const std::size_t j) {
+            const double q[3] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+            for_each_near(B, q, slow_reach, [&](const std::size_t j) {
               if (j == i || !other(j))
                 return;
               const double ex = x[3 * i] - x[3 * j],
@@ -315,39 +347,41 @@ namespace YarnImpact
                 return;
               found_fast.emplace_back(std::min(i, j), std::max(i, j));
             });
+            // Mirror pairs: the spheres near the image of i are those whose
+            // image is near i.
             const bool zi = chains.z_sym && zmask[i % nf] == 0.;
             if (chains.z_sym && !zi)
-              visit(x[3 * i + 1],
-                    -x[3 * i + 2],
-                    b0,
-                    b1,
-                    [&](const std::size_t j) {
-                      if (zmask[j % nf] != 0. && other(j))
-                        add_mirror(i,
-                                   j,
-                                   2,
-                                   chains.x_sym &&
-                                       decomposition.station_of(i) == 0 &&
-                                       decomposition.station_of(j) == 0
-                                     ? 0.5
-                                     : 1.);
-                    });
-            // In x = 0: only spheres within the cut-off of the plane, in
-            // the bins from x = 0 (bin 0, and 1 for safety).
+              {
+                const double qz[3] = {q[0], q[1], -q[2]};
+                for_each_near(B, qz, slow_reach, [&](const std::size_t j) {
+                  if (zmask[j % nf] != 0. && other(j))
+                    add_mirror(i,
+                               j,
+                               2,
+                               chains.x_sym &&
+                                   decomposition.station_of(i) == 0 &&
+                                   decomposition.station_of(j) == 0
+                                 ? 0.5
+                                 : 1.);
+                });
+              }
             if (B.holds_plane && i >= nf)
               {
-                const unsigned int bx = std::min(1u, n_bins - 1);
-                visit(x[3 * i + 1], x[3 * i + 2], 0, bx, [&](std::size_t j) {
+                const double qx[3] = {-q[0], q[1], q[2]};
+                for_each_near(B, qx, slow_reach, [&](const std::size_t j) {
                   if (j < nf || !other(j))
                     return;
                   const bool zj = chains.z_sym && zmask[j % nf] == 0.;
                   add_mirror(i, j, 1, zi && zj ? 0.5 : 1.);
                 });
                 if (chains.z_sym && !zi)
-                  visit(x[3 * i + 1], -x[3 * i + 2], 0, bx, [&](std::size_t j) {
-                    if (j >= nf && other(j) && zmask[j % nf] != 0.)
-                      add_mirror(i, j, 3, 1.);
-                  });
+                  {
+                    const double qxz[3] = {-q[0], q[1], -q[2]};
+                    for_each_near(B, qxz, slow_reach, [&](const std::size_t j) {
+                      if (j >= nf && other(j) && zmask[j % nf] != 0.)
+                        add_mirror(i, j, 3, 1.);
+                    });
+                  }
               }
           }
         merge_fast(B);
@@ -362,6 +396,8 @@ namespace YarnImpact
         // were, and the pairs found for the fast ones, with the weights of
         // the build and the tangential history of those listed before;
         // rows sorted by j, mirror pairs by (i, j, axes), as in the build.
+        // Both are sorted, so each row is one merge of two runs, in one
+        // pass over the old lists.
         const unsigned int nf            = chains.nf;
         const std::vector<double> &zmask = chains.zmask;
         const std::size_t sb             = B.row_sphere_begin;
@@ -373,27 +409,33 @@ namespace YarnImpact
         const std::vector<std::uint32_t> &pstart_old = B.pstart_old;
         const std::vector<Pair> &pairs_old           = B.pairs_old;
         const std::vector<double> &xi_old = B.pair_tangential_displacement_old;
-        B.pstart.assign(n_rows + 1, 0);
-        B.pairs.clear();
-        B.pair_tangential_displacement.clear();
         std::sort(found_fast.begin(), found_fast.end());
-        std::vector<RowEntry> row;
-        std::size_t q = 0;
+        B.pstart.resize(n_rows + 1);
+        B.pstart[0] = 0;
+        B.pairs.resize(pairs_old.size() + found_fast.size());
+        B.pair_tangential_displacement.resize(3 * B.pairs.size());
+        Pair *const out   = B.pairs.data();
+        double *const xio = B.pair_tangential_displacement.data();
+        std::size_t m = 0, q = 0;
+        const auto keep = [&](const std::uint32_t p, const float w) {
+          out[m] = {pairs_old[p].j, w};
+          for (unsigned int c = 0; c < 3; ++c)
+            xio[3 * m + c] = xi_old[3 * p + c];
+          ++m;
+        };
         for (std::size_t r = 0; r < n_rows; ++r)
           {
-            const std::size_t i = sb + r;
-            row.clear();
-            const std::uint32_t p0 = pstart_old[r], p1 = pstart_old[r + 1];
-            if (!B.fast[r])
-              for (std::uint32_t p = p0; p < p1; ++p)
-                if (!B.fast[pairs_old[p].j - sb])
-                  row.push_back(
-                    {pairs_old[p].j,
-                     pairs_old[p].w,
-                     {xi_old[3 * p], xi_old[3 * p + 1], xi_old[3 * p + 2]}});
+            const std::size_t i   = sb + r;
+            const bool i_fast     = B.fast[r];
+            std::uint32_t p       = pstart_old[r];
+            const std::uint32_t e = pstart_old[r + 1];
             for (; q < found_fast.size() && found_fast[q].first == i; ++q)
               {
                 const std::uint32_t j = found_fast[q].second;
+                // The old pairs before j: kept if neither sphere is fast.
+                for (; p < e && pairs_old[p].j < j; ++p)
+                  if (!i_fast && !B.fast[pairs_old[p].j - sb])
+                    keep(p, pairs_old[p].w);
                 // The weights of the build, in its order (list_build.cc).
                 float w = 1.f;
                 if (chains.x_sym && decomposition.lo == 0 && i < nf && j < nf)
@@ -404,38 +446,35 @@ namespace YarnImpact
                   w *= static_cast<float>(
                     0.5 * (chains.cw[decomposition.station_of(i)] +
                            chains.cw[decomposition.station_of(j)]));
-                RowEntry e = {j, w, {0., 0., 0.}};
-                const Pair *old =
-                  std::lower_bound(pairs_old.data() + p0,
-                                   pairs_old.data() + p1,
-                                   j,
-                                   [](const Pair &a, const std::uint32_t v) {
-                                     return a.j < v;
-                                   });
-                if (old != pairs_old.data() + p1 && old->j == j && old->w < 0.f)
+                if (p < e && pairs_old[p].j == j)
                   {
-                    const std::size_t p = old - pairs_old.data();
-                    e.w                 = -e.w;
-                    for (unsigned int c = 0; c < 3; ++c)
-                      e.xi_t[c] = xi_old[3 * p + c];
+                    // Listed before (one of the two is fast): its history
+                    // if it is an active contact.
+                    if (pairs_old[p].w < 0.f)
+                      keep(p, -w);
+                    else
+                      {
+                        out[m] = {j, w};
+                        std::fill(xio + 3 * m, xio + 3 * m + 3, 0.);
+                        ++m;
+                      }
+                    ++p;
                   }
-                row.push_back(e);
+                else
+                  {
+                    out[m] = {j, w};
+                    std::fill(xio + 3 * m, xio + 3 * m + 3, 0.);
+                    ++m;
+                  }
               }
-            std::sort(row.begin(),
-                      row.end(),
-                      [](const RowEntry &a, const RowEntry &b) {
-                        return a.j < b.j;
-                      });
-            for (const RowEntry &e : row)
-              {
-                B.pairs.push_back({e.j, e.w});
-                B.pair_tangential_displacement.insert(
-                  B.pair_tangential_displacement.end(),
-                  e.xi_t,
-                  e.xi_t + 3);
-              }
-            B.pstart[r + 1] = B.pairs.size();
+            if (!i_fast)
+              for (; p < e; ++p)
+                if (!B.fast[pairs_old[p].j - sb])
+                  keep(p, pairs_old[p].w);
+            B.pstart[r + 1] = m;
           }
+        B.pairs.resize(m);
+        B.pair_tangential_displacement.resize(3 * m);
 
         std::swap(B.mpairs, B.mpairs_old);
         std::swap(B.mirror_tangential_displacement,

@@ -163,6 +163,24 @@ namespace YarnImpact
          * [m^2]. */
         double r2_search = 0., r2_search_fast = 0.;
 
+        /** The (y, z) cell grid of the build's positions, kept for the
+         * partial searches, which look up the spheres that are not fast
+         * there (shifted by their bin's reference displacement) instead of
+         * binning the whole block again: origin of the bins along x [m],
+         * per bin the lower corner [m], inverse cell size [1/m] and cell
+         * counts, the first cell of each bin, the spheres (local indices)
+         * in cell order and where each cell starts among them. Derived
+         * data: made by the build, or from the build positions at the
+         * first partial search after a restart (has_grid false). */
+        bool has_grid = false;
+        /** Bin b of the grid spans x from grid_x0 + b h - grid_x_slack to
+         * grid_x0 + (b + 1) h [m] (h = d + skin; the slack is 0 after a
+         * build, h for a grid made from the build positions). */
+        double grid_x0 = 0., grid_x_slack = 0.;
+        std::vector<double> grid_y0, grid_z0, grid_ic;
+        std::vector<std::uint32_t> grid_ny, grid_nz, grid_cell_off,
+          grid_cell_start, grid_cell_sphere;
+
         /** Whether the block has rows on this rank. */
         bool
         active() const
@@ -372,6 +390,23 @@ namespace YarnImpact
          * (list_partial.cc). */
         void
         merge_fast(ListBlock &B);
+        /** Make the cell grid of block @p B's build from its build
+         * positions (after a restart, which does not store it). */
+        void
+        make_build_grid(ListBlock &B);
+        /** Call @p f(j) for every sphere j of block @p B's build that may
+         * be closer than the cut-off to the point @p q [m] at this step:
+         * the spheres that are not fast from the build's grid, around q
+         * shifted back by their bin's reference displacement with a radius
+         * enlarged by what they may have moved relative to it
+         * (@p slow_reach [m]), and the fast ones from their own grid at
+         * their current positions. */
+        template <typename F>
+        void
+        for_each_near(const ListBlock &B,
+                      const double q[3],
+                      const double slow_reach,
+                      const F &f) const;
         /** Append the rows of block @p C (which follow those of @p B) to
          * @p B. */
         void
@@ -401,6 +436,13 @@ namespace YarnImpact
         // Scratch of the partial search.
         std::vector<std::pair<std::uint32_t, std::uint32_t>> found_fast;
         std::vector<MirrorPair> found_mirror;
+        /** The fast spheres (local indices) by the key of their cell at
+         * their current positions (cubic cells of the cut-off from
+         * fast_origin [m]), and the bins of the build that hold spheres
+         * that are not fast. */
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> fast_cells;
+        double fast_origin[3] = {0., 0., 0.};
+        std::vector<std::uint32_t> slow_bins;
       };
     } // namespace internal
   }   // namespace DEM
