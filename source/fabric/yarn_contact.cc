@@ -317,17 +317,27 @@ namespace YarnImpact
         throw std::invalid_argument("yarn contact: 3 values per owned node");
       // Between rebuilds only the nodes this rank's contacts need come
       // from their owners; a rebuild gathers every node.
-      if (lists_may_miss(x))
+      bool rebuild_due;
+      {
+        StepTimer::Scope scope(timer, StepTimer::contact_list_checks);
+        rebuild_due = lists_may_miss(x);
+      }
+      if (rebuild_due)
         {
+          StepTimer::Scope scope(timer, StepTimer::contact_list_builds);
           gather(x, v);
           rebuild();
           set_up_exchange();
         }
       else
-        exchange(x, v);
+        {
+          StepTimer::Scope scope(timer, StepTimer::contact_exchange);
+          exchange(x, v);
+        }
       // The slots in one global order (node, then yarn) on every rank:
       // each node's force sums its terms in the same order on any
       // partition.
+      StepTimer::Scope scope(timer, StepTimer::contact_forces);
       Contact::with_contact_law(parameters.law, [&](auto tag) {
         using Law = typename decltype(tag)::type;
         for (Slot &slot : slots)
