@@ -23,6 +23,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -43,6 +45,26 @@ namespace
     std::smatch m;
     if (std::regex_search(text, m, pattern))
       return std::stod(m[1]);
+    return -1.;
+  }
+
+  /** Column @p k (0: wall s, 3: CPU s) of the line of part @p name in
+   * StepTimer's table @p table, or -1. */
+  double
+  part_seconds(const std::string &table,
+               const std::string &name,
+               const unsigned int k)
+  {
+    std::istringstream lines(table);
+    for (std::string line; std::getline(lines, line);)
+      if (line.rfind("  " + name + " |", 0) == 0)
+        {
+          std::istringstream fields(line.substr(name.size() + 4));
+          std::string field;
+          for (unsigned int i = 0; std::getline(fields, field, '|'); ++i)
+            if (i == k)
+              return std::stod(field);
+        }
     return -1.;
   }
 } // namespace
@@ -144,9 +166,8 @@ main(int argc, char **argv)
       const std::string &rm = result.model_remarks;
       // The loop's time: the timed sum of the largest rank (set-up and
       // the history's file writes are outside it).
-      const double loop = number_after(rm, R"(timed sum \(largest rank\) \|)");
-      const double loop_cpu =
-        number_after(rm, R"(timed sum \(largest rank\)(?: \| [0-9.]+){3} \|)");
+      const double loop     = part_seconds(rm, "timed sum (largest rank)", 0);
+      const double loop_cpu = part_seconds(rm, "timed sum (largest rank)", 3);
       std::cout << std::setprecision(6) << "case: " << prm_file << "\n"
                 << "ranks: " << n_ranks << "\n"
                 << "cells: " << cells << "\n"
@@ -176,12 +197,34 @@ main(int argc, char **argv)
       if (shortened)
         {
           // Steps to the PRM's end time at the mean step so far (the step
-          // shrinks a little as cells compact: an estimate).
+          // shrinks a little as cells compact: an estimate); the loop's
+          // time but the snapshots' per step, the snapshots' per
+          // snapshot.
           const double steps_to_end = own_end_time / (result.end_time / steps);
+          const double output       = part_seconds(rm, "output", 0);
+          const double output_cpu   = part_seconds(rm, "output", 3);
+          const double interval     = p.shared.output.snapshot_interval;
+          const auto snapshots      = [interval](const double t) {
+            // One at the start, one per interval and one at the end.
+            if (!(interval > 0.))
+              return 0.;
+            const double n = std::floor(t / interval * (1. + 1e-12)) + 1.;
+            return n + (t - (n - 1.) * interval > 1e-9 * t ? 1. : 0.);
+          };
+          const double per_snapshot =
+            output / std::max(1., snapshots(result.end_time));
           std::cout << "extrapolated to " << own_end_time * 1e6
-                    << " us (the loop's time per step so far): " << steps_to_end
-                    << " steps, wall time "
-                    << (wall - loop) + loop / steps * steps_to_end << " s\n";
+                    << " us (the loop's time per step so far, the snapshots' "
+                       "per snapshot): "
+                    << steps_to_end << " steps, wall time "
+                    << (wall - loop) + (loop - output) / steps * steps_to_end +
+                         per_snapshot * snapshots(own_end_time)
+                    << " s, CPU time of the largest rank "
+                    << (cpu_max - loop_cpu) +
+                         (loop_cpu - output_cpu) / steps * steps_to_end +
+                         output_cpu / std::max(1., snapshots(result.end_time)) *
+                           snapshots(own_end_time)
+                    << " s\n";
         }
       std::cout << rm << std::endl;
     }
