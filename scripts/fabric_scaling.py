@@ -19,7 +19,9 @@ The panel: `--size` [m] square at the measured pitch `--pitch` [m] with
 `--cells-per-spacing` and the 12-cell section, `--plies` plies, run to
 `--end-time` [s]; its wall time on each N of `--ranks` is
 cells x steps / (rate per core on 1 rank x N x E), E the `--efficiency`
-given, or the one measured on the largest rank count.
+given, or the one measured on the largest rank count; the rates are those
+of the timed loop without its snapshots (StepTimer's `output`), so that
+the estimate leaves the snapshots out.
 
     python3 scripts/fabric_scaling.py RUN_1RANK.txt RUN_2RANKS.txt ...
         [--size 0.1] [--plies 4] [--pitch 0.747e-3] [--cells-per-spacing 8]
@@ -34,6 +36,12 @@ def read_run(path):
     values = {}
     with open(path) as f:
         for line in f:
+            if line.startswith("  output |"):
+                # StepTimer's line of the snapshots: wall s, ..., CPU s.
+                fields = line.split("|")
+                values["output [s]"] = float(fields[1])
+                values["output, CPU [s]"] = float(fields[4])
+                continue
             if ": " not in line or line.startswith(" "):
                 continue
             key, value = line.rstrip("\n").split(": ", 1)
@@ -43,7 +51,7 @@ def read_run(path):
                 values[key] = value
     for key in ("ranks", "cells", "dofs", "contact surface nodes", "steps",
                 "mean step [ns]", "timed loop [s]", "timed loop, CPU [s]",
-                "peak memory per rank, largest [MB]"):
+                "peak memory per rank, largest [MB]", "output [s]"):
         if key not in values:
             sys.exit(f"fabric_scaling.py: {path} has no '{key}' line "
                      "(not an output of bench_fabric_throughput?)")
@@ -82,9 +90,15 @@ def main():
                    help="the loop's wall time, or its CPU time (on a "
                         "machine loaded by other jobs)")
     a = p.parse_args()
-    loop = "timed loop [s]" if a.clock == "wall" else "timed loop, CPU [s]"
+    loop_key = "timed loop [s]" if a.clock == "wall" else "timed loop, CPU [s]"
+    output_key = "output [s]" if a.clock == "wall" else "output, CPU [s]"
 
     runs = sorted((read_run(f) for f in a.runs), key=lambda r: r["ranks"])
+    # The loop without its snapshots (written at the start and the end of a
+    # short run; their cost is per snapshot, not per step).
+    loop = "loop without snapshots"
+    for r in runs:
+        r[loop] = r[loop_key] - r[output_key]
     base = runs[0]
     if base["ranks"] != 1:
         sys.exit("fabric_scaling.py: give the run on 1 rank (the efficiency "
@@ -98,7 +112,8 @@ def main():
           f"{base['dofs']:.0f} dofs, {base['contact surface nodes']:.0f} "
           f"contact surface nodes, {base['steps']:.0f} steps, mean step "
           f"{base['mean step [ns]']:.4f} ns")
-    print(f"ranks | loop [s] ({a.clock}) | cell-steps/s per core (loop) | "
+    print(f"ranks | loop without snapshots [s] ({a.clock}) | cell-steps/s "
+          "per core (loop) | "
           "efficiency | peak memory per rank [MB]")
     rate1 = cells * base["steps"] / base[loop]
     efficiency = {}
@@ -128,8 +143,9 @@ def main():
           f"contact surface nodes {base['contact surface nodes'] * scale:.4g}"
           f", steps to {a.end_time * 1e6:.0f} us {steps:.4g}, cell-steps "
           f"{panel_cells * steps:.4g}")
-    print(f"wall time from {rate1 / 1e6:.3f} M cell-steps/s on one core and "
-          f"a parallel efficiency of {E:.2f}:")
+    print(f"wall time ({a.clock} clock, no snapshots) from "
+          f"{rate1 / 1e6:.3f} M cell-steps/s on one core and a parallel "
+          f"efficiency of {E:.2f}:")
     print("ranks | wall time [h] | peak memory per rank [GB]")
     for n in a.ranks:
         hours = panel_cells * steps / (rate1 * n * E) / 3600.
