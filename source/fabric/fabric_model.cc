@@ -7,6 +7,7 @@
 #include <yarn_impact/core/crimped_yarn.h>
 #include <yarn_impact/fabric/fabric_model.h>
 #include <yarn_impact/fabric/mesh_file.h>
+#include <yarn_impact/fabric/step_timer.h>
 #include <yarn_impact/fe/extra_forces.h>
 #include <yarn_impact/fe/fe_model.h>
 
@@ -15,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -39,11 +41,15 @@ namespace YarnImpact
       class YarnContactForces : public FE::ExtraForces
       {
       public:
-        /** @param surface the lateral surface of the whole patch */
+        /** @param surface the lateral surface of the whole patch
+         * @param timer the fabric's step timer, which times the contact's
+         * parts */
         YarnContactForces(const YarnContactParameters &parameters,
-                          ContactSurface &&surface)
+                          ContactSurface &&surface,
+                          std::shared_ptr<StepTimer> timer)
           : parameters(parameters)
           , surface(std::move(surface))
+          , timer(std::move(timer))
         {}
 
         std::vector<unsigned int>
@@ -75,6 +81,7 @@ namespace YarnImpact
             }
           // Throws if some surface node is owned by no rank.
           contact.emplace(parameters, surface, owned, communicator);
+          contact->set_timer(timer.get());
           this->communicator = communicator;
           for (const unsigned int n : owned)
             for (unsigned int d = 0; d < 3; ++d)
@@ -217,6 +224,7 @@ namespace YarnImpact
       private:
         const YarnContactParameters parameters;
         const ContactSurface surface;
+        const std::shared_ptr<StepTimer> timer;
         std::optional<YarnContact> contact;
         MPI_Comm communicator = MPI_COMM_SELF;
         /** The reference positions [m] of this rank's nodes, 3 each, in
@@ -248,6 +256,7 @@ namespace YarnImpact
           const unsigned int n_plies,
           const double cone_threshold,
           const double spacing,
+          std::shared_ptr<StepTimer> timer,
           const MPI_Comm communicator)
           : shared(std::move(shared_copy))
           , fe(FE::create_model(*shared, fe_parameters, communicator))
@@ -258,6 +267,8 @@ namespace YarnImpact
           , n_plies(n_plies)
           , cone_threshold(cone_threshold)
           , spacing(spacing)
+          , timer(std::move(timer))
+          , communicator(communicator)
         {}
 
         std::string
@@ -283,21 +294,41 @@ namespace YarnImpact
         double
         stable_time_step() const override
         {
+          StepTimer::Scope scope(timer.get(), StepTimer::stable_step);
           return fe->stable_time_step();
         }
         double
         compute_forces(const Projectile &projectile, const double dt) override
         {
-          return fe->compute_forces(projectile, dt);
+          if (!timer->enabled)
+            return fe->compute_forces(projectile, dt);
+          // The FE's part: the call's time less the yarn contact's parts
+          // timed inside it.
+          const double contact_before = timer->yarn_contact_seconds();
+          const double contact_cpu    = timer->yarn_contact_seconds(true);
+          const auto start            = std::chrono::steady_clock::now();
+          const double cpu_start      = StepTimer::thread_cpu_seconds();
+          const double f              = fe->compute_forces(projectile, dt);
+          const double elapsed        = std::chrono::duration<double>(
+                                   std::chrono::steady_clock::now() - start)
+                                   .count();
+          const double cpu = StepTimer::thread_cpu_seconds() - cpu_start;
+          timer->add(StepTimer::fe_forces,
+                     elapsed - (timer->yarn_contact_seconds() - contact_before),
+                     cpu - (timer->yarn_contact_seconds(true) - contact_cpu));
+          timer->count_step();
+          return f;
         }
         void
         kick(const double dt) override
         {
+          StepTimer::Scope scope(timer.get(), StepTimer::integration);
           fe->kick(dt);
         }
         void
         drift(const double dt) override
         {
+          StepTimer::Scope scope(timer.get(), StepTimer::integration);
           fe->drift(dt);
         }
         /** The FE's, with the fabric's own columns (extra_column_names()):
@@ -307,6 +338,7 @@ namespace YarnImpact
         Observables
         observables() const override
         {
+          StepTimer::Scope scope(timer.get(), StepTimer::observables);
           Observables o       = fe->observables();
           const double broken = o.extra_columns.at(0);
           o.extra_columns     = {o.momentum,
@@ -394,6 +426,7 @@ namespace YarnImpact
                        const unsigned int index,
                        const double time) const override
         {
+          StepTimer::Scope scope(timer.get(), StepTimer::output);
           return fe->write_snapshot(directory, index, time);
         }
         unsigned long
@@ -426,11 +459,16 @@ namespace YarnImpact
         {
           fe->load_state(in);
         }
-        /** The yarn contact's (YarnContactForces::remarks()). */
+        /** The yarn contact's (YarnContactForces::remarks()), with the
+         * step's parts (StepTimer::report()) under `Fabric/Step
+         * timing`. */
         std::string
         remarks() const override
         {
-          return yarn_contact->remarks();
+          std::string s = yarn_contact->remarks();
+          if (timer->enabled)
+            s += "\n" + timer->report(communicator);
+          return s;
         }
 
       private:
@@ -446,6 +484,10 @@ namespace YarnImpact
         const unsigned int n_plies;
         /** Fabric/Cone deflection threshold [m], Fabric/Yarn spacing [m]. */
         const double cone_threshold, spacing;
+        /** The step's parts (Fabric/Step timing); mutable through the
+         * pointer: timing a const call changes no state of the model. */
+        const std::shared_ptr<StepTimer> timer;
+        const MPI_Comm communicator;
       };
     } // namespace
 
@@ -490,9 +532,11 @@ namespace YarnImpact
       dealii::Triangulation<3> whole;
       p.mesh.create(whole);
       const double density    = FE::with_fibre_data(*copy, p).density;
+      const auto timer        = std::make_shared<StepTimer>(fabric.step_timing);
       const auto yarn_contact = std::make_shared<YarnContactForces>(
         fabric.contact,
-        make_contact_surface(whole, density, {BoundaryIds::lateral}));
+        make_contact_surface(whole, density, {BoundaryIds::lateral}),
+        timer);
       p.extra_forces = yarn_contact;
 
       return std::make_unique<FabricModel>(std::move(copy),
@@ -504,6 +548,7 @@ namespace YarnImpact
                                            g.n_plies,
                                            fabric.cone_threshold,
                                            g.spacing,
+                                           timer,
                                            communicator);
     }
   } // namespace Fabric

@@ -115,6 +115,15 @@ namespace YarnImpact
             "in the mesh file's order, 3 numbers (a unit direction) or 24 "
             "(one per Gauss point); '#' starts a comment. Empty: estimated "
             "from the mesh.");
+          prm.declare_entry(
+            "Step timing",
+            "false",
+            dealii::Patterns::Bool(),
+            "true: time the parts of the step (the yarn contact's list "
+            "checks, list builds, exchange and forces; the FE forces with "
+            "the projectile contact; integration; stable step; observables; "
+            "output) and add their table to the run's summary; only clocks "
+            "are read, the history is the same [-].");
           prm.enter_subsection("Yarn contact");
           prm.declare_entry("Penalty",
                             "5e13",
@@ -173,6 +182,7 @@ namespace YarnImpact
             get_positive_double(prm, "Fabric", "Cone deflection threshold");
           fabric.mesh_file        = prm.get("Mesh file");
           fabric.orientation_file = prm.get("Orientation file");
+          fabric.step_timing      = prm.get_bool("Step timing");
           prm.enter_subsection("Yarn contact");
           YarnContactParameters &c = fabric.contact;
           c.penalty =

@@ -142,10 +142,32 @@ namespace YarnImpact
           ? 0.
           : std::clamp(std::round(-X[1] / g.ply_spacing), 0., g.n_plies - 1.);
       const unsigned int first = static_cast<unsigned int>(p) * yarns_per_ply();
-      unsigned int best        = first;
-      double smallest          = std::numeric_limits<double>::max();
+      // A bound first, from the warp yarn nearest in z and the weft yarn
+      // nearest in x; then every yarn in id order as before, but that a
+      // yarn whose radius cannot reach the bound is not evaluated: its
+      // radius is at least its offset across the section, v^2 / a_z^2
+      // (section_radius() adds u^2 / a_y^2 >= 0, the same rounding), so
+      // that it could be neither the smallest nor a tie, and the answer
+      // is the same yarn. Without it, locating the Gauss points of a
+      // large patch (every yarn's Newton projection per point) dominated
+      // its set-up.
+      const auto nearest = [](const double offset, const unsigned int n) {
+        return static_cast<unsigned int>(
+          std::clamp(std::round(offset + 0.5 * (n - 1.)), 0., n - 1.));
+      };
+      const double a_z2 = g.width_semi_axis * g.width_semi_axis;
+      const double bound =
+        std::min(section_radius(first + nearest(X[2] / g.spacing, g.n_warp), X),
+                 section_radius(first + g.n_warp +
+                                  nearest(X[0] / g.spacing, g.n_weft),
+                                X));
+      unsigned int best = first;
+      double smallest   = std::numeric_limits<double>::max();
       for (unsigned int id = first; id < first + yarns_per_ply(); ++id)
         {
+          const double v = to_yarn_frame(id, X)[2];
+          if (v * v / a_z2 > bound)
+            continue;
           const double r = section_radius(id, X);
           if (r < smallest)
             {

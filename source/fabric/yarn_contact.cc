@@ -110,6 +110,36 @@ namespace YarnImpact
           }
         return tangential <= 1e-16 * (dot(Xxi, Xxi) + dot(Xeta, Xeta));
       }
+
+      /**
+       * Whether @p p lies in the box of the corners @p c, grown by the
+       * detection depth @p depth [m] and 1e-6 of the box's extent: a
+       * point outside it is farther than @p depth from the face, so that
+       * project() cannot give it a contact, and its 12 Newton iterations
+       * are skipped with the same result. Why the margin holds: project()
+       * accepts a point whose distance to its closest point X is at most
+       * sqrt(gap^2 + 1e-16 (|X_xi|^2 + |X_eta|^2)), that is at most the
+       * depth plus 2.5e-8 of the extent, and X lies within 1e-8 of the
+       * extent of the box (xi, eta within 1e-9 of [0, 1]).
+       */
+      inline bool
+      may_touch(const double *c[4], const double *p, const double depth)
+      {
+        double lo[3], hi[3], extent = 0.;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            lo[d] =
+              std::min(std::min(c[0][d], c[1][d]), std::min(c[2][d], c[3][d]));
+            hi[d] =
+              std::max(std::max(c[0][d], c[1][d]), std::max(c[2][d], c[3][d]));
+            extent = std::max(extent, hi[d] - lo[d]);
+          }
+        const double grow = depth + 1e-6 * extent;
+        for (unsigned int d = 0; d < 3; ++d)
+          if (p[d] < lo[d] - grow || p[d] > hi[d] + grow)
+            return false;
+        return true;
+      }
     } // namespace
 
 
@@ -215,10 +245,12 @@ namespace YarnImpact
                             const double dt,
                             std::vector<double> &force)
     {
-      const unsigned int s           = slot.node;
-      const double *p                = &position[3 * s];
-      const dealii::Tensor<1, 3> A_s = area_vector(s);
-      const double ns[3]             = {A_s[0], A_s[1], A_s[2]};
+      const unsigned int s = slot.node;
+      const double *p      = &position[3 * s];
+      // The node's area vector, evaluated when a face's projection first
+      // needs it (most slots have none near enough): the same numbers.
+      double ns[3]   = {0., 0., 0.};
+      bool have_area = false;
 
       // The closest face whose normal opposes the node's, among those it
       // penetrates by at most d_max; the first in face order on a tie.
@@ -231,7 +263,17 @@ namespace YarnImpact
           const double *c[4];
           for (unsigned int a = 0; a < 4; ++a)
             c[a] = &position[3 * surface.faces[f][a]];
-          if (!project(c, p, trial) || !(dot(trial.n, ns) < 0.))
+          if (!may_touch(c, p, parameters.detection_depth) ||
+              !project(c, p, trial))
+            continue;
+          if (!have_area)
+            {
+              const dealii::Tensor<1, 3> A_s = area_vector(s);
+              for (unsigned int d = 0; d < 3; ++d)
+                ns[d] = A_s[d];
+              have_area = true;
+            }
+          if (!(dot(trial.n, ns) < 0.))
             continue;
           const double depth = -trial.gap;
           if (depth > 0. && depth <= parameters.detection_depth &&
@@ -317,17 +359,27 @@ namespace YarnImpact
         throw std::invalid_argument("yarn contact: 3 values per owned node");
       // Between rebuilds only the nodes this rank's contacts need come
       // from their owners; a rebuild gathers every node.
-      if (lists_may_miss(x))
+      bool rebuild_due;
+      {
+        StepTimer::Scope scope(timer, StepTimer::contact_list_checks);
+        rebuild_due = lists_may_miss(x);
+      }
+      if (rebuild_due)
         {
+          StepTimer::Scope scope(timer, StepTimer::contact_list_builds);
           gather(x, v);
           rebuild();
           set_up_exchange();
         }
       else
-        exchange(x, v);
+        {
+          StepTimer::Scope scope(timer, StepTimer::contact_exchange);
+          exchange(x, v);
+        }
       // The slots in one global order (node, then yarn) on every rank:
       // each node's force sums its terms in the same order on any
       // partition.
+      StepTimer::Scope scope(timer, StepTimer::contact_forces);
       Contact::with_contact_law(parameters.law, [&](auto tag) {
         using Law = typename decltype(tag)::type;
         for (Slot &slot : slots)

@@ -34,6 +34,9 @@ namespace YarnImpact
       /** `Fabric/Orientation file`: each cell's fibre direction for the
        * read mesh; empty: estimated from the mesh. */
       std::string orientation_file;
+      /** `Fabric/Step timing`: time the parts of the step (StepTimer) and
+       * add their table to the run's summary; only clocks are read. */
+      bool step_timing = false;
     };
 
     /**

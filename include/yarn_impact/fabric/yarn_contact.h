@@ -3,6 +3,7 @@
 
 #include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/checkpoint.h>
+#include <yarn_impact/fabric/step_timer.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -179,6 +180,14 @@ namespace YarnImpact
       unsigned int
       n_touching() const;
 
+      /** Time the parts of add_forces() in @p step_timer (null: none);
+       * it only reads clocks. */
+      void
+      set_timer(StepTimer *step_timer)
+      {
+        timer = step_timer;
+      }
+
       /** Write the contact's state to a checkpoint: the touching
        * contacts whose node this rank owns (node, other yarn, tangential
        * history [m], normal stiffness [N/m]) and each owned node's
@@ -290,6 +299,8 @@ namespace YarnImpact
       std::vector<double> loaded;
       unsigned int rebuilds = 0;
       bool built            = false;
+      /** The fabric's step timer, or null. */
+      StepTimer *timer = nullptr;
     };
   } // namespace Fabric
 } // namespace YarnImpact
