@@ -39,30 +39,24 @@ namespace YarnImpact
                             fe_parameters.preserve_section_area);
         if (layout.fibre_bars)
           {
+            // Each side's bars on its own FE part, the fibres where the DEM
+            // part lays them.
             const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
-            bars.set_up(*fe_model,
-                        section,
-                        layout,
-                        shared.yarn,
-                        *dem.fibre_y,
-                        *dem.fibre_z,
-                        shared.yarn.failure,
-                        quarter(),
-                        communicator);
-            bars.compute_forces(*fe_model, communicator);
+            auto set_up_bars            = [&](FibreBars &b, ImpactModel &fe) {
+              b.set_up(fe,
+                       section,
+                       layout,
+                       shared.yarn,
+                       *dem.fibre_y,
+                       *dem.fibre_z,
+                       shared.yarn.failure,
+                       quarter(),
+                       communicator);
+              b.compute_forces(fe, communicator);
+            };
+            set_up_bars(bars, *fe_model);
             if (left_fe_model)
-              {
-                left_bars.set_up(*left_fe_model,
-                                 section,
-                                 layout,
-                                 shared.yarn,
-                                 *dem.fibre_y,
-                                 *dem.fibre_z,
-                                 shared.yarn.failure,
-                                 quarter(),
-                                 communicator);
-                left_bars.compute_forces(*left_fe_model, communicator);
-              }
+              set_up_bars(left_bars, *left_fe_model);
           }
         nose.set_up(*fe_model, section, layout, shared.yarn, communicator);
         if (left_fe_model)
