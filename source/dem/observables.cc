@@ -127,17 +127,15 @@ namespace YarnImpact
                 const std::size_t i = decomposition.local_index(s, f);
                 const double m      = sphere_mass * fibre_symmetry_weight[f] *
                                  station_symmetry_weight[s] * chains.cw[s];
-                double v2 = 0.;
+                double v[3], v2 = 0.;
                 for (unsigned int c = 0; c < 3; ++c)
                   {
-                    const double vc =
+                    v[c] =
                       kicked_velocity(chains, decomposition, spheres, i, c);
-                    v2 += vc * vc;
+                    v2 += v[c] * v[c];
                   }
                 sums.add(kinetic, 0.5 * m * v2);
-                sums.add(
-                  momentum,
-                  -m * kicked_velocity(chains, decomposition, spheres, i, 1));
+                sums.add(momentum, -m * v[1]);
                 sums.add(dissipated, spheres.dissipated[i]);
                 defl = std::max(defl, fibre_y0[f] - pos[3 * i + 1]);
                 sums.add(second_moment + k,

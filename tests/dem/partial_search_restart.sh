@@ -9,36 +9,26 @@
 # positions. A grid of other positions (the set-up's, kept over the
 # restart) loses pairs, which the list check of every force evaluation
 # finds (the run stops with exit 4 naming the two spheres): the test fails.
-set -euo pipefail
 exe=$1
 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
+. "$(dirname "$(readlink -f "$0")")/../lib.sh"
+test_begin
 for run in whole stopped; do
   sed -e "s#set Directory         = run#set Directory = $run#" \
       "$src/partial_search.prm" > $run.prm
-  grep -q "Directory = $run" $run.prm
+  grep -q "Directory = $run" $run.prm || fail "$run.prm: no output directory set"
 done
-"$exe" whole.prm > /dev/null
-rc=0
-YARN_IMPACT_SIGNAL_AT_ROW=14 "$exe" stopped.prm > /dev/null 2> stderr || rc=$?
-if [ "$rc" -ne 6 ]; then
-  echo "FAIL: the stopped run exited with $rc, not 6: $(head -c 300 stderr)"
-  exit 1
-fi
-rc=0
-"$exe" --restart stopped.prm > /dev/null 2> stderr || rc=$?
-if [ "$rc" -ne 0 ]; then
-  echo "FAIL: the restart exited with $rc: $(head -c 300 stderr)"
-  exit 1
-fi
+"$exe" whole.prm > /dev/null || fail "the run that was not stopped: exit $?"
+YARN_IMPACT_SIGNAL_AT_ROW=14 "$exe" stopped.prm > /dev/null 2> stderr
+rc=$?
+[ $rc -eq 6 ] || fail "the stopped run exited with $rc, not 6: $(head -c 300 stderr)"
+"$exe" --restart stopped.prm > /dev/null 2> stderr
+rc=$?
+[ $rc -eq 0 ] || fail "the restart exited with $rc: $(head -c 300 stderr)"
 for f in history_dem.csv breaks_dem.csv; do
-  if ! cmp -s whole/$f stopped/$f; then
-    echo "FAIL: $f after the restart differs from the run that was not stopped"
-    exit 1
-  fi
+  same_history whole/$f stopped/$f ||
+    fail "$f after the restart differs from the run that was not stopped"
 done
 rows=$(wc -l < whole/history_dem.csv)
-[ "$rows" -gt 20 ] || { echo "FAIL: only $rows history rows"; exit 1; }
-echo "partial searches across a restart: history and breaks byte for byte ($rows rows)"
+[ "$rows" -gt 20 ] || fail "only $rows history rows"
+test_end "partial searches across a restart: history and breaks byte for byte ($rows rows)"
