@@ -1,14 +1,15 @@
 #!/usr/bin/python3
-"""Plots of a `Model = both` run.
+"""Plots of a run of several models (`Model = both`, `fe, dem, hybrid`).
 
 Usage: plot_comparison.py DIRECTORY
 
 Writes DIRECTORY/velocity_comparison.png (the paper's Fig. 6: projectile
-velocity of both models) and DIRECTORY/wave_fronts.png (longitudinal,
-transverse and spreading front positions of both models against time).
-Reads DIRECTORY/comparison.csv (both models on one time grid, written by a
-`Model = both` run that reached its end); without it, each model's own
-history (history_fe.csv, history_dem.csv), each over the time it ran.
+velocity of every model of the run) and DIRECTORY/wave_fronts.png
+(longitudinal, transverse and spreading front positions of every model
+against time). Reads DIRECTORY/comparison.csv (the models on one time grid,
+written by a run that reached its end); without it, each model's own
+history (history_fe.csv, history_dem.csv, history_hybrid.csv), each over
+the time it ran.
 """
 import csv
 import os
@@ -35,7 +36,9 @@ STYLE = {
     "legend.framealpha": 0.9,
 }
 MODELS = (("FE", "FE (hyperelastic continuum)", "C0"),
-          ("DEM", "DEM (fibres)", "C3"))
+          ("DEM", "DEM (fibres)", "C3"),
+          ("hybrid", "hybrid (fibres near the nose, continuum and fibre "
+           "bars beyond)", "C2"))
 FRONTS = (("longitudinal", ":"), ("transverse", "-"), ("spreading", "--"))
 
 
@@ -56,6 +59,8 @@ def series(directory):
     if os.path.exists(comparison):
         rows = read(comparison)
         for model, _, _ in MODELS:
+            if f"v {model} [m/s]" not in rows[0]:
+                continue
             d = {"t": column(rows, "t [us]"),
                  "v": column(rows, f"v {model} [m/s]")}
             for front, _ in FRONTS:
@@ -74,7 +79,7 @@ def series(directory):
         data[model] = d
     if not data:
         sys.exit(f"{directory}: no comparison.csv nor history_*.csv")
-    return data, "history_fe.csv, history_dem.csv"
+    return data, ", ".join(f"history_{m.lower()}.csv" for m in data)
 
 
 def end_note(ax, data):
@@ -90,13 +95,13 @@ def end_note(ax, data):
                         color=colour, fontsize=9)
 
 
-def fe_label(directory):
-    """The FE curve's legend: the law and the failure model of the run, from
-    its resolved DIRECTORY/parameters.prm (the generic label without it)."""
+def resolved_entries(directory):
+    """{"Section/Entry": value} of the run's resolved DIRECTORY/parameters.prm
+    (empty without it)."""
     path = os.path.join(directory, "parameters.prm")
-    if not os.path.exists(path):
-        return MODELS[0][1]
     entries, section = {}, []
+    if not os.path.exists(path):
+        return entries
     with open(path) as f:
         for line in f:
             words = line.split()
@@ -108,6 +113,14 @@ def fe_label(directory):
                 name, value = line.split("=", 1)
                 key = "/".join(section + [name.strip()[4:].strip()])
                 entries[key] = value.strip()
+    return entries
+
+
+def fe_label(entries):
+    """The FE curve's legend: the law and the failure model of the run (the
+    generic label without its parameters)."""
+    if not entries:
+        return MODELS[0][1]
     law = entries.get("FE/Constitutive law", "?")
     if entries.get("Yarn/Failure", "true") != "true":
         failure = "no failure"
@@ -116,6 +129,15 @@ def fe_label(directory):
                    "progressive": "progressive failure (identified)"}.get(
                        entries.get("Yarn/Failure model"), "?")
     return f"FE, {law} law, {failure}"
+
+
+def hybrid_label(entries):
+    """The hybrid curve's legend: its DEM half-length and far field."""
+    if not entries:
+        return MODELS[2][1]
+    a = float(entries.get("Hybrid/DEM half-length", "nan")) * 1e3
+    far = entries.get("Hybrid/Far field", "?")
+    return f"hybrid, fibres to |x| = {a:.2g} mm, {far} beyond"
 
 
 def main():
@@ -127,10 +149,14 @@ def main():
     run = os.path.basename(os.path.normpath(directory))
 
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    entries = resolved_entries(directory)
+    labels = {"FE": fe_label(entries), "hybrid": hybrid_label(entries)}
     for model, label, colour in MODELS:
         if model in data:
+            # Dashed, so that the DEM's curve shows under the hybrid's.
             ax.plot(data[model]["t"], data[model]["v"], color=colour,
-                    label=fe_label(directory) if model == "FE" else label)
+                    ls="--" if model == "hybrid" else "-",
+                    label=labels.get(model, label))
     end_note(ax, data)
     ax.set_xlabel("time t [\u00b5s]")
     ax.set_ylabel("projectile velocity [m/s]")

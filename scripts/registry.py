@@ -343,15 +343,26 @@ def extract_kink(log):
 
 
 def extract_consistency(log):
+    """The mass per length and axial stiffness lines of each model against
+    the DEM: mass_fe, mass_dem, mass_diff_pct (FE/DEM - 1), and for another
+    model M (the hybrid) mass_M and mass_M_diff_pct; the same with ea."""
     q = {}
     for line in lines_of(log):
         for key, pat in (("mass", r"mass per length \[mg/m\]:"),
                          ("ea", r"axial stiffness EA \[N\]:")):
-            if re.search(pat, line):
-                m = re.search(r"FE ([\d.]+), DEM ([\d.]+) \(FE/DEM - 1 = "
-                              r"([-+\d.]+) %", line)
+            if not re.search(pat, line):
+                continue
+            m = re.search(r"(\w+) ([\d.]+), DEM ([\d.]+) \(\w+/DEM - 1 = "
+                          r"([-+\d.]+) %", line)
+            if not m:
+                continue
+            model = m.group(1).lower()
+            if model == "fe":
                 q[key + "_fe"], q[key + "_dem"], q[key + "_diff_pct"] = (
-                    float(m.group(1)), float(m.group(2)), float(m.group(3)))
+                    float(m.group(2)), float(m.group(3)), float(m.group(4)))
+            else:
+                q[key + "_" + model] = float(m.group(2))
+                q[key + "_" + model + "_diff_pct"] = float(m.group(4))
     if not q:
         raise SystemExit("registry.py: no model consistency lines in " + log)
     return q

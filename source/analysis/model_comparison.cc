@@ -62,99 +62,159 @@ namespace YarnImpact
     } // namespace
 
 
-    ComparisonSummary
-    compare_models(const std::vector<HistoryRow> &fe,
-                   const std::vector<HistoryRow> &dem,
+    std::string
+    model_label(const std::string &name)
+    {
+      if (name == "fe")
+        return "FE";
+      if (name == "dem")
+        return "DEM";
+      return name;
+    }
+
+
+    std::vector<ComparisonSummary>
+    compare_models(const std::vector<ComparedRun> &runs,
+                   const unsigned int reference,
                    const std::string &directory)
     {
-      ComparisonSummary s;
-      s.first_dem_break  = first_failure(dem);
-      s.first_fe_failure = first_failure(fe);
-      const double end   = std::min(fe.empty() ? 0. : fe.back().time,
-                                  dem.empty() ? 0. : dem.back().time);
-      s.compared_until =
-        (s.first_dem_break >= 0. ? std::min(s.first_dem_break, end) : end);
+      const std::vector<HistoryRow> &dem = runs.at(reference).history;
+      const std::string &ref             = runs[reference].label;
+      std::vector<ComparisonSummary> summaries(runs.size());
+      double end = dem.empty() ? 0. : dem.back().time;
+      for (const ComparedRun &run : runs)
+        end = std::min(end, run.history.empty() ? 0. : run.history.back().time);
+      for (unsigned int m = 0; m < runs.size(); ++m)
+        if (m != reference)
+          {
+            ComparisonSummary &s = summaries[m];
+            s.first_dem_break    = first_failure(dem);
+            s.first_fe_failure   = first_failure(runs[m].history);
+            s.compared_until =
+              (s.first_dem_break >= 0. ? std::min(s.first_dem_break, end)
+                                       : end);
+          }
 
       AtomicFile file(directory + "/comparison.csv");
       std::ostream &csv = file.stream();
-      csv << "t [us],v FE [m/s],v DEM [m/s],v FE - v DEM [m/s],"
-             "longitudinal front FE [mm],longitudinal front DEM [mm],"
-             "transverse front FE [mm],transverse front DEM [mm],"
-             "spreading front FE [mm],spreading front DEM [mm],"
-             "width at impact FE [mm],width at impact DEM [mm],"
-             "RMS width at impact FE [mm],RMS width at impact DEM [mm]\n"
-          << std::setprecision(8);
-      for (const auto &row : fe)
+      csv << "t [us]";
+      for (const ComparedRun &run : runs)
+        csv << ",v " << run.label << " [m/s]";
+      for (unsigned int m = 0; m < runs.size(); ++m)
+        if (m != reference)
+          csv << ",v " << runs[m].label << " - v " << ref << " [m/s]";
+      for (const char *front : {"longitudinal front",
+                                "transverse front",
+                                "spreading front",
+                                "width at impact",
+                                "RMS width at impact"})
+        for (const ComparedRun &run : runs)
+          csv << ',' << front << ' ' << run.label << " [mm]";
+      csv << '\n' << std::setprecision(8);
+      std::vector<HistoryRow> at(runs.size());
+      for (const auto &row : runs.front().history)
         {
           if (row.time > end)
             break;
-          const HistoryRow d = interpolate(dem, row.time);
-          const double dv    = row.projectile_velocity - d.projectile_velocity;
-          if (row.time <= s.compared_until &&
-              std::abs(dv) > s.max_velocity_difference)
-            {
-              s.max_velocity_difference = std::abs(dv);
-              s.time_of_max_difference  = row.time;
-            }
-          const auto &f = row.fronts, &g = d.fronts;
-          csv << row.time * 1e6 << ',' << row.projectile_velocity << ','
-              << d.projectile_velocity << ',' << dv << ','
-              << f.longitudinal * 1e3 << ',' << g.longitudinal * 1e3 << ','
-              << f.transverse * 1e3 << ',' << g.transverse * 1e3 << ','
-              << f.spreading * 1e3 << ',' << g.spreading * 1e3 << ','
-              << f.width_at_impact * 1e3 << ',' << g.width_at_impact * 1e3
-              << ',' << f.rms_width_at_impact * 1e3 << ','
-              << g.rms_width_at_impact * 1e3 << '\n';
+          for (unsigned int m = 0; m < runs.size(); ++m)
+            at[m] = m == 0 ? row : interpolate(runs[m].history, row.time);
+          csv << row.time * 1e6;
+          for (const HistoryRow &r : at)
+            csv << ',' << r.projectile_velocity;
+          for (unsigned int m = 0; m < runs.size(); ++m)
+            if (m != reference)
+              {
+                const double dv =
+                  at[m].projectile_velocity - at[reference].projectile_velocity;
+                ComparisonSummary &s = summaries[m];
+                if (row.time <= s.compared_until &&
+                    std::abs(dv) > s.max_velocity_difference)
+                  {
+                    s.max_velocity_difference = std::abs(dv);
+                    s.time_of_max_difference  = row.time;
+                  }
+                csv << ',' << dv;
+              }
+          for (const auto front : {&WaveFrontPositions::longitudinal,
+                                   &WaveFrontPositions::transverse,
+                                   &WaveFrontPositions::spreading,
+                                   &WaveFrontPositions::width_at_impact,
+                                   &WaveFrontPositions::rms_width_at_impact})
+            for (const HistoryRow &r : at)
+              csv << ',' << r.fronts.*front * 1e3;
+          csv << '\n';
         }
       file.commit();
-      return s;
+      return summaries;
     }
 
 
     void
-    print_comparison(const ComparisonSummary &s,
-                     const double (&mass_per_length)[2],
-                     const double (&axial_stiffness)[2],
-                     const std::vector<HistoryRow> &fe,
-                     const std::vector<HistoryRow> &dem,
+    print_comparison(const std::vector<ComparisonSummary> &summaries,
+                     const std::vector<ComparedRun> &runs,
+                     const unsigned int reference,
                      std::ostream &out)
     {
-      out << std::fixed << std::setprecision(4)
-          << "Comparison of the FE and DEM models\n"
-          << "  mass per length [mg/m]:     FE " << mass_per_length[0] * 1e6
-          << ", DEM " << mass_per_length[1] * 1e6 << " (FE/DEM - 1 = "
-          << 100. * (mass_per_length[0] / mass_per_length[1] - 1.) << " %)\n"
-          << "  axial stiffness EA [N]:     FE " << axial_stiffness[0]
-          << ", DEM " << axial_stiffness[1] << " (FE/DEM - 1 = "
-          << 100. * (axial_stiffness[0] / axial_stiffness[1] - 1.) << " %)\n"
-          << "  largest |v_FE - v_DEM| up to " << s.compared_until * 1e6
-          << " us: " << s.max_velocity_difference << " m/s at "
-          << s.time_of_max_difference * 1e6 << " us\n"
-          << "  first DEM fibre break:      ";
-      if (s.first_dem_break >= 0.)
-        out << s.first_dem_break * 1e6 << " us\n";
-      else
-        out << "none\n";
-      out << "  FE yarn failed:             ";
-      if (s.first_fe_failure >= 0.)
-        out << "yes, first cell at " << s.first_fe_failure * 1e6 << " us\n";
-      else
-        out << "no\n";
-      out << "  energy budget at the end [mJ]: projectile kinetic, yarn "
-             "kinetic, elastic, contact, dissipated, error [%]\n";
-      for (const auto *rows : {&fe, &dem})
-        if (!rows->empty())
-          {
-            const auto &r = rows->back();
-            out << "    " << (rows == &fe ? "FE " : "DEM") << std::setw(10)
-                << r.projectile_kinetic_energy * 1e3 << std::setw(10)
-                << r.model.kinetic_energy * 1e3 << std::setw(10)
-                << r.model.elastic_energy * 1e3 << std::setw(10)
-                << r.model.contact_energy * 1e3 << std::setw(10)
-                << r.model.dissipated_energy * 1e3 << std::setw(10)
-                << r.energy_error * 1e2 << '\n';
-          }
-      out << std::defaultfloat;
+      const ComparedRun &dem = runs.at(reference);
+      const std::string &ref = dem.label;
+      for (unsigned int m = 0; m < runs.size(); ++m)
+        {
+          if (m == reference)
+            continue;
+          const ComparisonSummary &s = summaries.at(m);
+          const ComparedRun &run     = runs[m];
+          const std::string &name    = run.label;
+          // The labels padded to the width the FE's lines have had.
+          const auto field = [](const std::string &text) {
+            return text +
+                   std::string(text.size() < 28 ? 28 - text.size() : 1, ' ');
+          };
+          out << std::fixed << std::setprecision(4) << "Comparison of the "
+              << name << " and " << ref << " models\n"
+              << "  mass per length [mg/m]:     " << name << ' '
+              << run.mass_per_length * 1e6 << ", " << ref << ' '
+              << dem.mass_per_length * 1e6 << " (" << name << '/' << ref
+              << " - 1 = "
+              << 100. * (run.mass_per_length / dem.mass_per_length - 1.)
+              << " %)\n"
+              << "  axial stiffness EA [N]:     " << name << ' '
+              << run.axial_stiffness << ", " << ref << ' '
+              << dem.axial_stiffness << " (" << name << '/' << ref << " - 1 = "
+              << 100. * (run.axial_stiffness / dem.axial_stiffness - 1.)
+              << " %)\n"
+              << "  largest |v_" << name << " - v_" << ref << "| up to "
+              << s.compared_until * 1e6 << " us: " << s.max_velocity_difference
+              << " m/s at " << s.time_of_max_difference * 1e6 << " us\n"
+              << "  " << field("first " + ref + " fibre break:");
+          if (s.first_dem_break >= 0.)
+            out << s.first_dem_break * 1e6 << " us\n";
+          else
+            out << "none\n";
+          out << "  " << field(name + " yarn failed:");
+          if (s.first_fe_failure >= 0.)
+            out << "yes, first " << (name == "FE" ? "cell" : "break") << " at "
+                << s.first_fe_failure * 1e6 << " us\n";
+          else
+            out << "no\n";
+          out << "  energy budget at the end [mJ]: projectile kinetic, yarn "
+                 "kinetic, elastic, contact, dissipated, error [%]\n";
+          for (const ComparedRun *r : {&run, &dem})
+            if (!r->history.empty())
+              {
+                const auto &last  = r->history.back();
+                std::string label = r->label;
+                if (label.size() < 3)
+                  label += std::string(3 - label.size(), ' ');
+                out << "    " << label << std::setw(10)
+                    << last.projectile_kinetic_energy * 1e3 << std::setw(10)
+                    << last.model.kinetic_energy * 1e3 << std::setw(10)
+                    << last.model.elastic_energy * 1e3 << std::setw(10)
+                    << last.model.contact_energy * 1e3 << std::setw(10)
+                    << last.model.dissipated_energy * 1e3 << std::setw(10)
+                    << last.energy_error * 1e2 << '\n';
+              }
+          out << std::defaultfloat;
+        }
     }
   } // namespace Analysis
 } // namespace YarnImpact

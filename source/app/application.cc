@@ -95,6 +95,22 @@ namespace YarnImpact
         plugin->parse_parameters(prm);
         models.emplace(name, std::move(plugin));
       }
+    // Several models run one after the other on the same problem: each
+    // once, all of the single yarn, none with a task of its own.
+    const std::vector<std::string> names = run_models();
+    Parameters::require(!names.empty(), "Model", "names no model");
+    for (std::size_t i = 0; i < names.size() && names.size() > 1; ++i)
+      {
+        Parameters::require(std::count(names.begin(), names.end(), names[i]) ==
+                              1,
+                            "Model",
+                            "names the model " + names[i] +
+                              " twice (both is fe, dem)");
+        Parameters::require(models.at(names[i])->single_yarn(),
+                            "Model",
+                            "= " + model + ": " + names[i] +
+                              " runs alone, not with other models");
+      }
     // A model's own task (the DEM's elementary tests) runs that model
     // alone.
     for (const auto &[name, plugin] : models)
@@ -343,15 +359,14 @@ namespace YarnImpact
 
         bool passed = true;
         std::ostringstream summary_text;
-        std::vector<std::vector<HistoryRow>> histories;
+        std::vector<Analysis::ComparedRun> runs;
         std::string run_errors;
-        double mass_per_length[2] = {0., 0.}, axial_stiffness[2] = {0., 0.};
         for (const std::string &type : models)
           {
             CheckpointOptions checkpoints;
             checkpoints.restart = restart;
-            // With both models, the FE's end state lets a restart in the
-            // DEM part compare with it.
+            // With several models, the end state of each but the last
+            // lets a restart in a later one compare with it.
             checkpoints.keep_final_state = (type != models.back());
             ImpactSimulation simulation(
               parameters.shared,
@@ -374,7 +389,7 @@ namespace YarnImpact
               }
             catch (const RunError &e)
               {
-                // With both models, a model that fails still leaves its
+                // With several models, a model that fails still leaves its
                 // history up to the failure to the comparison.
                 if (models.size() == 1)
                   throw;
@@ -383,28 +398,29 @@ namespace YarnImpact
                 summary_text << "The " << simulation.model().name()
                              << " model stopped early: " << e.what() << '\n';
               }
-            mass_per_length[histories.size()] =
+            Analysis::ComparedRun run;
+            run.label   = Analysis::model_label(type);
+            run.history = simulation.history();
+            run.mass_per_length =
               simulation.model().mass() / parameters.shared.yarn.length;
-            axial_stiffness[histories.size()] =
+            run.axial_stiffness =
               simulation.model().axial_properties().axial_stiffness();
-            histories.push_back(simulation.history());
+            runs.push_back(std::move(run));
           }
-        Analysis::ComparisonSummary comparison;
-        if (histories.size() == 2)
+        // Several models: each compared with the DEM, when it ran.
+        const auto reference =
+          std::find(models.begin(), models.end(), comparison_reference());
+        const bool compare = runs.size() > 1 && reference != models.end();
+        const auto r = static_cast<unsigned int>(reference - models.begin());
+        std::vector<Analysis::ComparisonSummary> comparison;
+        if (compare)
           collective_output(MPI_COMM_WORLD, [&] {
             if (is_root)
-              comparison = Analysis::compare_models(histories[0],
-                                                    histories[1],
-                                                    output.directory);
+              comparison = Analysis::compare_models(runs, r, output.directory);
           });
-        if (histories.size() == 2 && is_root)
+        if (compare && is_root)
           {
-            Analysis::print_comparison(comparison,
-                                       mass_per_length,
-                                       axial_stiffness,
-                                       histories[0],
-                                       histories[1],
-                                       summary_text);
+            Analysis::print_comparison(comparison, runs, r, summary_text);
             // Plotting is the scripts' job (scripts/run_default.sh calls it),
             // not the library's.
             summary_text << "  plots: python3 scripts/plot_comparison.py "

@@ -17,7 +17,9 @@ namespace YarnImpact
   void
   declare_model_type(dealii::ParameterHandler &prm)
   {
-    // The registered models, each with its own words, and `both`.
+    // The registered models, each with its own words, and `both`; several
+    // models of the single yarn run one after the other on the same
+    // problem and are compared with the DEM.
     std::string values, help = "Model to run: ";
     for (const std::string &name : ModelRegistry::names())
       {
@@ -25,8 +27,14 @@ namespace YarnImpact
         help += ModelRegistry::help(name) + " (" + name + "), ";
       }
     values += "both";
-    help += "or fe and dem on the same problem, compared (both).";
-    prm.declare_entry("Model", "fe", dealii::Patterns::Selection(values), help);
+    help += "or fe and dem on the same problem, compared (both). Several "
+            "models of the single yarn, comma-separated (fe, dem, hybrid), "
+            "run one after the other on the same problem in that order, "
+            "each compared with the DEM (comparison.csv).";
+    prm.declare_entry("Model",
+                      "fe",
+                      dealii::Patterns::MultipleSelection(values),
+                      help);
   }
 
 
@@ -40,9 +48,28 @@ namespace YarnImpact
   std::vector<std::string>
   model_names(const std::string &model)
   {
-    if (model == "both")
-      return {"fe", "dem"};
-    return {model};
+    std::vector<std::string> names;
+    std::istringstream list(model);
+    for (std::string name; std::getline(list, name, ',');)
+      {
+        const auto first = name.find_first_not_of(" \t");
+        const auto last  = name.find_last_not_of(" \t");
+        name             = first == std::string::npos
+                             ? std::string()
+                             : name.substr(first, last - first + 1);
+        if (name == "both")
+          names.insert(names.end(), {"fe", "dem"});
+        else if (!name.empty())
+          names.push_back(name);
+      }
+    return names;
+  }
+
+
+  std::string
+  comparison_reference()
+  {
+    return "dem";
   }
 
 

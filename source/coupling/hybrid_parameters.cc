@@ -76,6 +76,16 @@ namespace YarnImpact
         "waves keep the DEM's resolution and the overlap ties each sphere "
         "to one bar node (fewer bars are cheaper but reflect the short "
         "waves the DEM part sends, doc/hybrid.md section 3.4) [-].");
+      prm.declare_entry(
+        "FE cells along the axis",
+        "0",
+        Patterns::Integer(0),
+        "Model = hybrid: cells along the axis of the hybrid's FE part, in "
+        "place of FE/Cells along the axis, so that a run of several models "
+        "(Model = fe, dem, hybrid) gives each FE its own mesh: the hybrid's "
+        "overlap passes the DEM part's short waves with cells of a few "
+        "trusses (doc/hybrid.md section 5.9), where the FE model alone is "
+        "identified on its own cells; 0: FE/Cells along the axis [-].");
       prm.leave_subsection();
     }
 
@@ -98,8 +108,9 @@ namespace YarnImpact
               "must be 0 (no DEM part at the clamp) or a positive length "
               "(got " +
                 prm.get("Clamp DEM length") + ")");
-      fibre_bars    = prm.get("Far field") == "fibre bars";
-      bars_per_cell = prm.get_integer("Fibre bars per FE cell");
+      fibre_bars     = prm.get("Far field") == "fibre bars";
+      bars_per_cell  = prm.get_integer("Fibre bars per FE cell");
+      fe_axial_cells = prm.get_integer("FE cells along the axis");
       prm.leave_subsection();
     }
 

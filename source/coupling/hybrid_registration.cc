@@ -39,6 +39,9 @@ namespace YarnImpact
           fe.parse_parameters(prm);
           dem.parse_parameters(prm);
           hybrid.parse_parameters(prm);
+          // The hybrid's FE part on its own mesh, if it has one.
+          if (hybrid.fe_axial_cells > 0)
+            fe.n_axial_cells = hybrid.fe_axial_cells;
         }
 
         void

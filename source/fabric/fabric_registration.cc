@@ -370,6 +370,13 @@ namespace YarnImpact
           return create_fabric_model(shared, fe, f, communicator);
         }
 
+        /** A woven patch, not the single yarn: it runs alone. */
+        bool
+        single_yarn() const override
+        {
+          return false;
+        }
+
       private:
         /** The name of @p shared's projectile's shape, for messages. */
         static const char *

@@ -11,10 +11,30 @@ namespace YarnImpact
 {
   namespace Analysis
   {
-    /** What the comparison of the FE and DEM runs of one problem found. */
+    /** One model's run, as the comparison takes it. */
+    struct ComparedRun
+    {
+      /** The model's name as the columns and the summary give it ("FE",
+       * "DEM", "hybrid"; model_label()). */
+      std::string label;
+      /** Its history. */
+      std::vector<HistoryRow> history;
+      /** Its mass per length as discretised [kg/m]. */
+      double mass_per_length = 0.;
+      /** Its axial stiffness EA as discretised [N]. */
+      double axial_stiffness = 0.;
+    };
+
+    /** The label of the model @p name (ImpactModel::name()) in the
+     * comparison: "FE" for fe, "DEM" for dem, the name itself otherwise. */
+    std::string
+    model_label(const std::string &name);
+
+    /** What the comparison of one run with the reference (DEM) run of the
+     * same problem found. */
     struct ComparisonSummary
     {
-      /** Largest |v_FE - v_DEM| up to the first DEM fibre break (or the end
+      /** Largest |v - v_DEM| up to the first DEM fibre break (or the end
        * when no fibre broke) [m/s]. */
       double max_velocity_difference = 0.;
       /** Time of that largest difference [s]. */
@@ -23,32 +43,35 @@ namespace YarnImpact
       double compared_until = 0.;
       /** Time of the first DEM fibre (truss) break [s], -1 if none. */
       double first_dem_break = -1.;
-      /** Time of the first FE cell failure [s], -1 if none. */
+      /** Time of the first failure (cell, truss or fibre bar) of the
+       * compared run [s], -1 if none. */
       double first_fe_failure = -1.;
     };
 
     /**
-     * Compare two histories of the same problem: interpolate both on the
-     * times of @p fe, write `comparison.csv` (time; FE and DEM projectile
-     * velocity and their difference; the three fronts of both) into
-     * @p directory, and return the summary.
+     * Compare every run of @p runs with the reference @p runs[reference]
+     * (the DEM) on the same problem: interpolate all on the times of the
+     * first run, write `comparison.csv` into @p directory (time; each
+     * model's projectile velocity, then each one's difference to the
+     * reference's; each front of every model: columns `v FE [m/s]`,
+     * `v FE - v DEM [m/s]`, `transverse front hybrid [mm]`, ...), and
+     * return the summary of each run (that of the reference empty).
      */
-    ComparisonSummary
-    compare_models(const std::vector<HistoryRow> &fe,
-                   const std::vector<HistoryRow> &dem,
+    std::vector<ComparisonSummary>
+    compare_models(const std::vector<ComparedRun> &runs,
+                   const unsigned int reference,
                    const std::string &directory);
 
     /**
-     * Write @p summary, the two models' mass per length and axial stiffness
-     * side by side (doc/theory.md section 1.7), and the end-of-run energy
-     * budgets of both models.
+     * Write, for every run of @p runs other than the reference, its
+     * summary of @p summaries, its mass per length and axial stiffness
+     * next to the reference's (doc/theory.md section 1.7), and the
+     * end-of-run energy budgets of both.
      */
     void
-    print_comparison(const ComparisonSummary &summary,
-                     const double (&mass_per_length)[2],
-                     const double (&axial_stiffness)[2],
-                     const std::vector<HistoryRow> &fe,
-                     const std::vector<HistoryRow> &dem,
+    print_comparison(const std::vector<ComparisonSummary> &summaries,
+                     const std::vector<ComparedRun> &runs,
+                     const unsigned int reference,
                      std::ostream &out);
   } // namespace Analysis
 } // namespace YarnImpact

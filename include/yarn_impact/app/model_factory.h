@@ -20,8 +20,9 @@ namespace YarnImpact
   struct AllParameters;
 
   /** Declare the entry `Model` (top level): a registered model's name
-   * (ModelRegistry), or `both`, the FE and the DEM on the same problem,
-   * then compared. */
+   * (ModelRegistry), `both` (the FE and the DEM on the same problem, then
+   * compared), or a comma-separated list of single-yarn models
+   * (`fe, dem, hybrid`), run in that order on the same problem. */
   void
   declare_model_type(dealii::ParameterHandler &prm);
 
@@ -30,9 +31,15 @@ namespace YarnImpact
   parse_model_type(dealii::ParameterHandler &prm);
 
   /** The registered models that a run of `Model = ` @p model drives, in
-   * order: @p model itself, or for `both` the FE, then the DEM. */
+   * order: the names of the list @p model, `both` read as the FE, then
+   * the DEM. */
   std::vector<std::string>
   model_names(const std::string &model);
+
+  /** The model the others of a run of several are compared with: the DEM,
+   * the reference of the single yarn. */
+  std::string
+  comparison_reference();
 
   /**
    * The registered impact model @p name with its parameters in

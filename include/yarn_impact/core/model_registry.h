@@ -76,6 +76,15 @@ namespace YarnImpact
       return std::nullopt;
     }
 
+    /** Whether the model is of the single yarn of `Yarn` (the FE, the DEM
+     * and the hybrid are; a woven patch is not): only such models run
+     * together in one `Model` list, on the same problem. */
+    virtual bool
+    single_yarn() const
+    {
+      return true;
+    }
+
     /** Run the task of own_task() on @p communicator (collective), its
      * report to @p out; @return whether its checks passed. Throws
      * Interrupted when a signal stops it. */

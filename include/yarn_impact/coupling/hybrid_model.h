@@ -41,6 +41,9 @@ namespace YarnImpact
       bool fibre_bars = false;
       /** Fibre bars per FE cell; 0: one per DEM truss [-]. */
       unsigned int bars_per_cell = 0;
+      /** FE cells along the axis of the hybrid's FE part over the half
+       * yarn, in place of `FE/Cells along the axis`; 0: that entry [-]. */
+      unsigned int fe_axial_cells = 0;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
