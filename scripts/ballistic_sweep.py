@@ -54,7 +54,6 @@ failure strain); below it the yarn breaks, if at all, on the reflected
 waves. Found by bisection between the sweep's velocities, to --tolerance.
 """
 import argparse
-import csv
 import hashlib
 import math
 import os
@@ -247,18 +246,12 @@ def measure(out, kind, velocity):
     if not os.path.exists(history):
         raise Failure("the run in %s wrote no history: see %s.log"
                       % (out, out))
-    try:
-        with open(history) as f:
-            rows = list(csv.DictReader(f))
-        v = [float(r["projectile velocity [m/s]"]) for r in rows]
-        ke = [float(r["projectile kinetic energy [mJ]"]) for r in rows]
-        failed = [float(r["failed elements"]) for r in rows]
-        t = [float(r["t [us]"]) for r in rows]
-    except (OSError, UnicodeDecodeError, csv.Error, KeyError, ValueError,
-            TypeError) as e:
-        raise Failure("cannot read the history %s: %s" % (history, e))
-    if not rows:
-        raise Failure("the history %s has no rows: see %s.log" % (history, out))
+    h = script_errors.history_columns(
+        history, ("t [us]", "projectile velocity [m/s]",
+                  "projectile kinetic energy [mJ]", "failed elements"),
+        out + ".log")
+    t, v = h["t [us]"], h["projectile velocity [m/s]"]
+    ke, failed = h["projectile kinetic energy [mJ]"], h["failed elements"]
     first = next((t[i] for i in range(len(t)) if failed[i] > 0), None)
     cut = None
     if os.path.exists(os.path.join(out, "summary.txt")):

@@ -16,7 +16,6 @@ perforated if its primary yarns broke before; otherwise it is an error.
 V50: the lowest impact velocity that perforates, by bisection between the
 highest velocity that does not and the lowest that does, to the tolerance.
 """
-import csv
 import math
 import os
 import re
@@ -84,20 +83,13 @@ def measure(out, log, velocity, wall):
     """The figures of one run: residual velocity [m/s] at the end, energy
     absorbed [mJ], broken yarns at the end, primary yarns, perforated, the
     time the broken yarns first reach the primary count [us]."""
-    history = os.path.join(out, HISTORY)
-    try:
-        with open(history) as f:
-            rows = list(csv.DictReader(f))
-        t = [float(r["t [us]"]) for r in rows]
-        v = [float(r["projectile velocity [m/s]"]) for r in rows]
-        ke = [float(r["projectile kinetic energy [mJ]"]) for r in rows]
-        broken = [int(float(r["broken yarns"])) for r in rows]
-    except (OSError, UnicodeDecodeError, csv.Error, KeyError, ValueError,
-            TypeError) as e:
-        raise Failure("cannot read the history %s: %s (see %s)"
-                      % (history, e, log))
-    if not rows:
-        raise Failure("the history %s has no rows: see %s" % (history, log))
+    h = script_errors.history_columns(
+        os.path.join(out, HISTORY),
+        ("t [us]", "projectile velocity [m/s]",
+         "projectile kinetic energy [mJ]", "broken yarns"), log)
+    t, v = h["t [us]"], h["projectile velocity [m/s]"]
+    ke = h["projectile kinetic energy [mJ]"]
+    broken = [int(x) for x in h["broken yarns"]]
     report = setup_report(log)
     n = report["primary"]
     broken_at = next((t[i] for i in range(len(t)) if broken[i] >= n), None)

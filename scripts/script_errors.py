@@ -2,6 +2,7 @@
 (ballistic_sweep.py, identify_charmetant.py): a bad argument, file or run
 ends with "PROG: error: ..." on stderr and a non-zero exit, never a
 traceback."""
+import csv
 import sys
 
 
@@ -29,3 +30,20 @@ def run(main, prog):
     except Exception as e:  # never a traceback
         sys.stderr.write("%s: error: %s: %s\n" % (prog, type(e).__name__, e))
         return 1
+
+
+def history_columns(path, names, see=""):
+    """{name: [float per row]} of the columns NAMES of the history CSV at
+    PATH; a history that cannot be read, lacks a column or has no rows is a
+    Failure naming it (and SEE, where the run's log is)."""
+    hint = " (see %s)" % see if see else ""
+    try:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        columns = {n: [float(r[n]) for r in rows] for n in names}
+    except (OSError, UnicodeDecodeError, csv.Error, KeyError, ValueError,
+            TypeError) as e:
+        raise Failure("cannot read the history %s: %s%s" % (path, e, hint))
+    if not rows:
+        raise Failure("the history %s has no rows%s" % (path, hint))
+    return columns
