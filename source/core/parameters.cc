@@ -40,8 +40,11 @@ namespace YarnImpact
         Patterns::Selection("none|half|quarter"),
         "Part of the yarn that is modelled: the whole yarn (none), x >= 0 with "
         "the symmetry plane x = 0 (half), or x >= 0, z >= 0 with the planes "
-        "x = 0 and z = 0 (quarter). Reported masses, forces and energies are "
-        "always those of the whole yarn.");
+        "x = 0 and z = 0 (quarter); with Model = fabric the patch's part "
+        "x <= 0 (half) or x <= 0, z >= 0 (quarter), the planes on the "
+        "middle yarns' centrelines (doc/fabric.md section 10). Reported "
+        "masses, forces and energies are always those of the whole yarn "
+        "or patch.");
     }
 
     void

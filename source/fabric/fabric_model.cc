@@ -43,13 +43,18 @@ namespace YarnImpact
       public:
         /** @param surface the lateral surface of the whole patch
          * @param timer the fabric's step timer, which times the contact's
-         * parts */
+         * parts
+         * @param symmetry the whole patch over the meshed part [-]
+         * (1, 2, 4), by which energy() and dissipated() scale the
+         * contact's to the whole patch's, as the FE model scales its own */
         YarnContactForces(const YarnContactParameters &parameters,
                           ContactSurface &&surface,
-                          std::shared_ptr<StepTimer> timer)
+                          std::shared_ptr<StepTimer> timer,
+                          const double symmetry)
           : parameters(parameters)
           , surface(std::move(surface))
           , timer(std::move(timer))
+          , symmetry(symmetry)
         {}
 
         std::vector<unsigned int>
@@ -125,7 +130,7 @@ namespace YarnImpact
                       sums[2] * sums[2]) /
             std::max(sums[3], 1e-300);
           const unsigned int touching = contact->n_touching();
-          const double energy = contact->energy(), work = contact->dissipated();
+          const double energy = this->energy(), work = dissipated();
           std::ostringstream s;
           s << "yarn contact: " << touching << " touching contacts at the end, "
             << contact->n_rebuilds() << " candidate lists built; energy "
@@ -183,13 +188,13 @@ namespace YarnImpact
         double
         energy() const override
         {
-          return contact->energy();
+          return symmetry * contact->energy();
         }
 
         double
         dissipated() const override
         {
-          return contact->dissipated();
+          return symmetry * contact->dissipated();
         }
 
         void
@@ -225,6 +230,7 @@ namespace YarnImpact
         const YarnContactParameters parameters;
         const ContactSurface surface;
         const std::shared_ptr<StepTimer> timer;
+        const double symmetry;
         std::optional<YarnContact> contact;
         MPI_Comm communicator = MPI_COMM_SELF;
         /** The reference positions [m] of this rank's nodes, 3 each, in
@@ -502,7 +508,12 @@ namespace YarnImpact
       g.thickness_semi_axis = shared.yarn.thickness_semi_axis;
       g.width_semi_axis     = shared.yarn.width_semi_axis;
       g.section_refinements = fe.section_refinements;
-      const auto patch      = std::make_shared<const WovenPatch>(g);
+      // The symmetry planes (doc/fabric.md section 10): x = 0, and z = 0
+      // with quarter; only the generated patch (validated).
+      using YarnImpact::Parameters::Symmetry;
+      g.mirror_x       = shared.general.symmetry != Symmetry::none;
+      g.mirror_z       = shared.general.symmetry == Symmetry::quarter;
+      const auto patch = std::make_shared<const WovenPatch>(g);
 
       // The stations go by x over the warp yarns' span (FE::GivenMesh).
       auto copy = std::make_unique<YarnImpact::Parameters::Shared>(shared);
@@ -531,12 +542,16 @@ namespace YarnImpact
       // The surface of the whole mesh, before the FE model distributes it.
       dealii::Triangulation<3> whole;
       p.mesh.create(whole);
-      const double density    = FE::with_fibre_data(*copy, p).density;
-      const auto timer        = std::make_shared<StepTimer>(fabric.step_timing);
-      const auto yarn_contact = std::make_shared<YarnContactForces>(
-        fabric.contact,
+      const double density = FE::with_fibre_data(*copy, p).density;
+      const auto timer     = std::make_shared<StepTimer>(fabric.step_timing);
+      YarnContactParameters contact = fabric.contact;
+      contact.mirror_x              = g.mirror_x;
+      contact.mirror_z              = g.mirror_z;
+      const auto yarn_contact       = std::make_shared<YarnContactForces>(
+        contact,
         make_contact_surface(whole, density, {BoundaryIds::lateral}),
-        timer);
+        timer,
+        YarnImpact::Parameters::symmetry_factor(shared.general.symmetry));
       p.extra_forces = yarn_contact;
 
       return std::make_unique<FabricModel>(std::move(copy),

@@ -199,10 +199,10 @@ namespace YarnImpact
           fe.parse_parameters(prm);
         }
 
-        /** The patch's geometry checks, the run's (no symmetry, no
-         * FE/Crimp, no global refinement, a projectile narrower than the
-         * patch), then FE::validate() of the FE yarns as the model will
-         * make them. */
+        /** The patch's geometry checks, the run's (symmetry planes
+         * where the weave and the impact allow them, no FE/Crimp, no global
+         * refinement, a projectile narrower than the patch), then
+         * FE::validate() of the FE yarns as the model will make them. */
         void
         validate(const YarnImpact::Parameters::Shared &shared) const override
         {
@@ -270,12 +270,7 @@ namespace YarnImpact
           require(p.n_plies == 1 || p.ply_spacing > thickness,
                   "Fabric/Ply spacing",
                   plies.str());
-          // The fabric is the whole patch.
-          require(shared.general.symmetry ==
-                    YarnImpact::Parameters::Symmetry::none,
-                  "Symmetry",
-                  "must be none with Model = fabric: the patch is modelled "
-                  "whole");
+          check_symmetry(shared, p);
           require(!fe.crimp.crimped(),
                   "FE/Crimp/Amplitude",
                   "must be 0 with Model = fabric: its yarns take their "
@@ -378,6 +373,53 @@ namespace YarnImpact
         }
 
       private:
+        /** The symmetry planes' conditions (doc/fabric.md section 10):
+         * the generated patch, a plane on the middle yarn's centreline
+         * (the plain weave is its own mirror image there, not between two
+         * yarns, where over and under swap) and a layer of nodes, the
+         * impact on the planes. */
+        void
+        check_symmetry(const YarnImpact::Parameters::Shared &shared,
+                       const WovenPatchGeometry &p) const
+        {
+          using YarnImpact::Parameters::require;
+          using YarnImpact::Parameters::Symmetry;
+          const Symmetry symmetry = shared.general.symmetry;
+          if (symmetry == Symmetry::none)
+            return;
+          const bool quarter = symmetry == Symmetry::quarter;
+          require(fabric.mesh_file.empty(),
+                  "Symmetry",
+                  "must be none with Fabric/Mesh file: only the generated "
+                  "patch is cut by symmetry planes");
+          require(p.n_weft % 2 == 1,
+                  "Fabric/Weft yarns",
+                  "must be odd with Symmetry = half or quarter: the plane "
+                  "x = 0 must be the middle weft yarn's centreline, about "
+                  "which the plain weave is its own mirror image; between "
+                  "two weft yarns the mirror image swaps over and under");
+          require(!quarter || p.n_warp % 2 == 1,
+                  "Fabric/Warp yarns",
+                  "must be odd with Symmetry = quarter: the plane z = 0 "
+                  "must be the middle warp yarn's centreline, about which "
+                  "the plain weave is its own mirror image; between two "
+                  "warp yarns the mirror image swaps over and under");
+          require(p.cells_per_spacing % 2 == 0,
+                  "Fabric/Cells per spacing",
+                  "must be even with Symmetry = half or quarter, so that "
+                  "the symmetry planes are layers of nodes of the yarns "
+                  "they cut at mid-length");
+          require(shared.projectile.offset_x == 0.,
+                  "Projectile/Impact offset x",
+                  "must be 0 with Symmetry = half or quarter: the "
+                  "projectile must be its own mirror image in the plane "
+                  "x = 0");
+          require(!quarter || shared.projectile.offset_z == 0.,
+                  "Projectile/Impact offset z",
+                  "must be 0 with Symmetry = quarter: the projectile must "
+                  "be its own mirror image in the plane z = 0");
+        }
+
         /** The name of @p shared's projectile's shape, for messages. */
         static const char *
         shape_name(const YarnImpact::Parameters::Shared &shared)

@@ -50,7 +50,8 @@ namespace YarnImpact
      * 2 p + 1 (its secondary ones).
      * @param primary_ids set to the primary yarns' list, @p ply_heights
      * to the plies' heights, for the set-up report
-     * @return the length of all yarns' centrelines [m]
+     * @return the length of all yarns' centrelines [m], of the whole
+     * patch where symmetry planes cut it
      */
     double
     use_patch(const std::shared_ptr<const WovenPatch> &patch,
@@ -85,7 +86,9 @@ namespace YarnImpact
       };
       p.mesh.sections_per_yarn =
         std::max(g.n_warp, g.n_weft) * g.cells_per_spacing;
-      p.mesh.n_yarns         = patch->n_yarns();
+      p.mesh.n_yarns = patch->n_yarns();
+      for (unsigned int id = 0; id < patch->n_yarns(); ++id)
+        p.mesh.yarn_copies.push_back(patch->copies(id));
       p.mesh.material_fields = {
         {"ply", [patch](const unsigned int id) { return patch->ply(id); }}};
 
@@ -116,7 +119,8 @@ namespace YarnImpact
 
       double yarn_length = 0.;
       for (unsigned int id = 0; id < patch->n_yarns(); ++id)
-        yarn_length += patch->yarn(id).centreline_length();
+        yarn_length +=
+          patch->length_copies(id) * patch->yarn(id).centreline_length();
       return yarn_length;
     }
   } // namespace Fabric

@@ -41,6 +41,14 @@ namespace YarnImpact
         throw std::invalid_argument(
           "WovenPatch: there must be a ply, and the ply spacing must exceed "
           "a ply's meshed thickness, or neighbouring plies overlap");
+      // A mirror plane lies on a crossing yarn's centreline, and is a
+      // layer of nodes of the yarns it cuts at mid-length.
+      if ((g.mirror_x && g.n_weft % 2 == 0) ||
+          (g.mirror_z && g.n_warp % 2 == 0) ||
+          ((g.mirror_x || g.mirror_z) && g.cells_per_spacing % 2 == 1))
+        throw std::invalid_argument(
+          "WovenPatch: a symmetry plane needs an odd number of the yarns "
+          "parallel to it and an even number of cells per spacing");
       const double k = numbers::PI / g.spacing;
       for (unsigned int id = 0; id < yarns_per_ply(); ++id)
         {
@@ -65,8 +73,46 @@ namespace YarnImpact
           y.width_semi_axis     = g.width_semi_axis;
           y.n_cells             = n * g.cells_per_spacing;
           y.section_refinements = g.section_refinements;
+          // Cut at mid-length by the plane across it: the warp keeps
+          // x <= 0, the weft its own x (the patch's z) >= 0. Cut
+          // lengthwise by the plane along it: the half section z >= 0 of
+          // its own frame, the patch's z >= 0 for the warp, x <= 0 for
+          // the weft (to_yarn_frame()).
+          if (warp ? g.mirror_x : g.mirror_z)
+            {
+              (warp ? y.x_end : y.x_begin) = 0.;
+              y.n_cells /= 2;
+            }
+          y.half_section =
+            (warp ? g.mirror_z : g.mirror_x) && offset.back() == 0.;
           yarns.emplace_back(y); // throws if it folds
         }
+    }
+
+
+    bool
+    WovenPatch::meshed(const unsigned int id) const
+    {
+      return is_warp(id) ? !g.mirror_z || position(id) >= 0.
+                         : !g.mirror_x || position(id) <= 0.;
+    }
+
+
+    unsigned int
+    WovenPatch::copies(const unsigned int id) const
+    {
+      if (!meshed(id))
+        return 0;
+      const bool mirrored = is_warp(id) ? g.mirror_z : g.mirror_x;
+      return mirrored && position(id) != 0. ? 2 : 1;
+    }
+
+
+    unsigned int
+    WovenPatch::length_copies(const unsigned int id) const
+    {
+      const bool cut = is_warp(id) ? g.mirror_x : g.mirror_z;
+      return (cut ? 2 : 1) * copies(id);
     }
 
 
@@ -201,6 +247,8 @@ namespace YarnImpact
       std::vector<const Triangulation<3> *> pointers;
       for (unsigned int id = 0; id < n_yarns(); ++id)
         {
+          if (!meshed(id))
+            continue;
           yarn(id).create_mesh(parts[id]);
           const double o     = position(id);
           const bool warp    = is_warp(id);
@@ -232,6 +280,16 @@ namespace YarnImpact
               const double s =
                 yarn(id).abscissa_of(to_yarn_frame(id, face->center()));
               const double tol = 1e-6 * g.spacing / g.cells_per_spacing;
+              // On a symmetry plane: a cut end, or a half section's cut
+              // face (every other face of a yarn lies off it by at least
+              // half a cell along or across the yarn).
+              const Point<3> c = face->center();
+              if ((g.mirror_x && std::abs(c[0]) < tol) ||
+                  (g.mirror_z && std::abs(c[2]) < tol))
+                {
+                  face->set_boundary_id(symmetry_plane_boundary_id);
+                  continue;
+                }
               const bool clamped =
                 is_warp(id) ? g.clamp_warp_ends : g.clamp_weft_ends;
               if (std::abs(s - y.x_begin) >= tol &&

@@ -235,6 +235,16 @@ namespace YarnImpact
                   A[d] += 0.25 * N[k] * n[d];
               }
         }
+      // On a symmetry plane the faces of the mirror image are not
+      // meshed: without its normal component the node's area vector is
+      // the whole node's share, so that its stiffness, -A . n, is too
+      // (the node's own rounding puts it within 1e-18 m of the plane).
+      const dealii::Point<3> &X = surface.reference[node];
+      const double on           = 1e-6 * parameters.detection_depth;
+      if (parameters.mirror_x && std::abs(X[0]) < on)
+        A[0] = 0.;
+      if (parameters.mirror_z && std::abs(X[2]) < on)
+        A[2] = 0.;
       return A;
     }
 

@@ -290,7 +290,9 @@ namespace YarnImpact
         for (unsigned int k = y * per_yarn; k < (y + 1) * per_yarn; ++k)
           if (section_cells[k] > 0 && failed[k] == section_cells[k])
             {
-              ++broken;
+              broken += parameters.mesh.yarn_copies.empty()
+                          ? 1u
+                          : parameters.mesh.yarn_copies[y];
               break;
             }
       return broken;

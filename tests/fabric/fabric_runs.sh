@@ -69,6 +69,17 @@
 #               the cylinder's diameter and mass instead: the same checks
 #               (check_history.py energy, check_symmetry.py), on 1 and 2
 #               ranks, the two histories byte for byte the same.
+#  symmetry_planes
+#               3 x 3 yarns, no failure, 1.2 us, a history row every step:
+#               struck by the sphere (snapshots every 0.5 us) and by the
+#               cylinder along z, the whole patch and its half and quarter
+#               models (Symmetry); the half and the whole struck by the
+#               sphere 0.25 mm off z = 0; the quarter sphere also on 2
+#               ranks. The
+#               whole patch's mirror symmetry before its first yarn
+#               contact; each reduced history against the whole's
+#               (check_symmetry_planes.py says how closely); the 2-rank
+#               history byte for byte the 1-rank one.
 exe=$1
 src=$2
 case=$3
@@ -302,6 +313,41 @@ case $case in
     histories_agree sphere_1/history_fabric.csv sphere_2/history_fabric.csv \
       "sphere: the history on 2 ranks is the one on 1 rank, byte for byte" \
       "sphere: the history on 2 ranks differs from the one on 1 rank"
+    ;;
+  symmetry_planes)
+    check="$here/check_symmetry_planes.py"
+    for shape in sphere cylinder; do
+      for sym in none half quarter; do
+        patch "${shape}_$sym" 3 3 1.2e-6 1e-9 \
+          "${no_failure}set Symmetry = $sym\nsubsection Projectile\n  set Shape = $shape\nend\n" \
+          > "${shape}_$sym.prm"
+      done
+    done
+    # Off the plane z = 0, on the plane x = 0: the half model still holds.
+    for sym in none half; do
+      patch "offset_$sym" 3 3 1.2e-6 1e-9 \
+        "${no_failure}set Symmetry = $sym\nsubsection Projectile\n  set Shape = sphere\n  set Impact offset z = 0.25e-3\nend\n" \
+        > "offset_$sym.prm"
+    done
+    sed -i 's/set Snapshot interval = 0$/set Snapshot interval = 0.5e-6/' sphere_none.prm
+    cp sphere_quarter.prm sphere_quarter_2.prm
+    sed -i 's/Directory = sphere_quarter$/Directory = sphere_quarter_2/' sphere_quarter_2.prm
+    for r in sphere_none sphere_half sphere_quarter cylinder_none cylinder_half \
+      cylinder_quarter offset_none offset_half; do
+      run 1 $r.prm
+      [ "$rc" -eq 0 ] || fail "$r: exit $rc: $(head -c 300 stderr)"
+    done
+    run 2 sphere_quarter_2.prm
+    [ "$rc" -eq 0 ] || fail "sphere_quarter on 2 ranks: exit $rc: $(head -c 300 stderr)"
+    /usr/bin/python3 "$check" mirror sphere_none || failures=$((failures + 1))
+    for sym in half quarter; do
+      /usr/bin/python3 "$check" compare sphere_none sphere_$sym 0.05 || failures=$((failures + 1))
+      /usr/bin/python3 "$check" compare cylinder_none cylinder_$sym 0.005 || failures=$((failures + 1))
+    done
+    /usr/bin/python3 "$check" compare offset_none offset_half 0.05 || failures=$((failures + 1))
+    histories_agree sphere_quarter/history_fabric.csv sphere_quarter_2/history_fabric.csv \
+      "symmetry_planes: the quarter model's history on 2 ranks is the one on 1 rank, byte for byte" \
+      "symmetry_planes: the quarter model's history on 2 ranks differs from the one on 1 rank"
     ;;
   *)
     echo "unknown case $case"

@@ -55,6 +55,20 @@ namespace YarnImpact
        * (WovenPatch::ply_thickness), so that the plies do not touch at
        * rest. */
       double ply_spacing = 0.5e-3;
+      /** The symmetry plane x = 0 (`Symmetry = half` and `quarter`): only
+       * the half x <= 0 is meshed, the warp yarns cut at mid-length, the
+       * middle weft yarn, on the plane, cut lengthwise (its half section
+       * on x <= 0), the weft yarns at x > 0 left out. The plain weave is
+       * its own mirror image about the centreline of a weft yarn, not
+       * about a plane between two (which swaps over and under): n_weft
+       * must be odd, and cells_per_spacing even, so that x = 0 is a
+       * layer of nodes. */
+      bool mirror_x = false;
+      /** The symmetry plane z = 0 (`Symmetry = quarter`): only z >= 0 is
+       * meshed, the weft yarns cut at mid-length, the middle warp yarn
+       * cut lengthwise, the warp yarns at z < 0 left out; n_warp odd,
+       * cells_per_spacing even. */
+      bool mirror_z = false;
     };
 
     /** The boundary id of the end sections of a yarn whose ends are free
@@ -63,6 +77,14 @@ namespace YarnImpact
      * clamps none of its nodes and the yarn contact's surface, made of
      * the lateral faces, leaves it out. */
     constexpr unsigned int free_end_boundary_id = 3;
+
+    /** The boundary id of the faces on a symmetry plane
+     * (WovenPatchGeometry::mirror_x, mirror_z): the cut ends of the yarns
+     * cut at mid-length and the cut faces of those cut lengthwise. Not
+     * lateral, so that neither contact acts on them, and not clamped:
+     * the FE model fixes the normal displacement of every node on the
+     * plane by its position (doc/fabric.md section 10). */
+    constexpr unsigned int symmetry_plane_boundary_id = 4;
 
     /**
      * A plain-woven patch (doc/fe-model.md section 8.3): n_warp warp yarns
@@ -165,6 +187,25 @@ namespace YarnImpact
         return k < g.n_warp ? k : k - g.n_warp;
       }
 
+      /** Whether yarn @p id is meshed: not left out by a symmetry plane
+       * (WovenPatchGeometry::mirror_x, mirror_z). Every yarn keeps its
+       * id and its CrimpedYarn, meshed or not. */
+      bool
+      meshed(const unsigned int id) const;
+
+      /** The yarns [-] of the whole patch that yarn @p id stands for: 0
+       * if it is not meshed, 2 if its mirror image in a symmetry plane
+       * parallel to it is not meshed, 1 otherwise (no plane, or one that
+       * cuts it at mid-length or lengthwise). */
+      unsigned int
+      copies(const unsigned int id) const;
+
+      /** How many times [-] yarn @p id's centreline as meshed
+       * (CrimpedYarn::centreline_length) goes into the whole patch's:
+       * copies() times 2 where a symmetry plane cuts it at mid-length. */
+      unsigned int
+      length_copies(const unsigned int id) const;
+
       /** Yarn @p id in its own frame: its centreline along its local x
        * (the global x of a warp yarn, the global z of a weft yarn), its
        * ply's mid-plane at y = 0. */
@@ -218,7 +259,9 @@ namespace YarnImpact
        * turned into its ply, merged into one triangulation with no
        * shared vertex; each cell's material id is its yarn's id, the
        * boundary ids those of BoundaryIds (lateral, end), the end sections
-       * of a yarn with free ends free_end_boundary_id. */
+       * of a yarn with free ends free_end_boundary_id, the faces on a
+       * symmetry plane symmetry_plane_boundary_id. Only the meshed()
+       * yarns. */
       void
       create_mesh(dealii::Triangulation<3, 3> &mesh) const;
 

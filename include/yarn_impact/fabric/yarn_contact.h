@@ -92,6 +92,12 @@ namespace YarnImpact
       /** Skin s of the candidate search [m]: the lists are rebuilt when a
        * node has moved s/2 since the last build. */
       double skin = 20e-6;
+      /** The symmetry planes x = 0 and z = 0 that bound the modelled part
+       * (WovenPatchGeometry::mirror_x, mirror_z): a node on one takes the
+       * part of its area vector in the plane, the whole node's area
+       * vector (the sum of its mirror images, whose normal components
+       * cancel) over the images. Not `.prm` entries. */
+      bool mirror_x = false, mirror_z = false;
     };
 
 

@@ -57,6 +57,12 @@ namespace YarnImpact
       unsigned int sections_per_yarn = 0;
       /** Yarns [-]: the material ids are 0 to n_yarns - 1 (section). */
       unsigned int n_yarns = 0;
+      /** The yarns of the whole model [-] that each material id stands
+       * for in the count of broken yarns: 2 for a yarn whose mirror image
+       * in a symmetry plane parallel to it is not modelled, 1 for one
+       * the planes cut (at mid-length or lengthwise), 0 for one not
+       * meshed. Empty: 1 each. */
+      std::vector<unsigned int> yarn_copies;
       /** Cell fields of the snapshots beside `yarn` (the material id):
        * each a name and the value [-] of the cells of a material id, the
        * argument. None by default. */
