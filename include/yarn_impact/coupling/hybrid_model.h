@@ -42,6 +42,12 @@ namespace YarnImpact
       /** Fibre bars per FE cell; 0: one per DEM truss [-]. */
       unsigned int bars_per_cell = 0;
 
+      /** The overlap's transverse tie (`Transverse tie`, doc/hybrid.md
+       * section 2.5): 0, every sphere on the continuum's field (`field`);
+       * 1, the section's mean per node layer (`section mean`); 3, its mean
+       * and linear moments (`section affine`) [-]. */
+      unsigned int transverse_modes = 0;
+
       static void
       declare_parameters(dealii::ParameterHandler &prm);
       void
