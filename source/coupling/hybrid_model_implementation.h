@@ -66,8 +66,6 @@ namespace YarnImpact
             nose.bars = &bars;
           nose.transverse_modes = left.transverse_modes =
             hybrid.transverse_modes;
-          nose.transverse_per_station = left.transverse_per_station =
-            hybrid.transverse_per_station;
           if (layout.whole)
             {
               // The side x < 0 as the mirror image of the side x > 0: the

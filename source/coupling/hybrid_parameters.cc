@@ -79,7 +79,7 @@ namespace YarnImpact
       prm.declare_entry(
         "Transverse tie",
         "field",
-        Patterns::Selection("field|section mean|section affine|station mean"),
+        Patterns::Selection("field|section mean|section affine"),
         "Model = hybrid, Far field = fibre bars: how the overlap ties the "
         "spheres' y and z motion to the continuum (doc/hybrid.md section "
         "2.5). field: every sphere moves with the continuum's field at its "
@@ -87,9 +87,7 @@ namespace YarnImpact
         "function along x) only the spheres' mass-weighted mean y and z "
         "velocity equals the continuum's at the spheres, so that fibres move "
         "relative to each other across the section. section affine: the "
-        "mean and the moments linear in the section coordinates. station "
-        "mean: the mean per DEM station (each x of the spheres) instead of "
-        "per node layer.");
+        "mean and the moments linear in the section coordinates.");
       prm.leave_subsection();
     }
 
@@ -115,10 +113,9 @@ namespace YarnImpact
       fibre_bars            = prm.get("Far field") == "fibre bars";
       bars_per_cell         = prm.get_integer("Fibre bars per FE cell");
       const std::string tie = prm.get("Transverse tie");
-      transverse_modes      = tie == "section mean" || tie == "station mean" ? 1
-                              : tie == "section affine"                      ? 3
+      transverse_modes      = tie == "section mean"     ? 1
+                              : tie == "section affine" ? 3
                                                         : 0;
-      transverse_per_station = tie == "station mean";
       prm.leave_subsection();
     }
 

@@ -77,13 +77,7 @@ namespace YarnImpact
       // rows per node layer and section mode.
       if (transverse_modes > 0)
         {
-          // Per station: one row group per coupled station, each sphere
-          // in its own (xi = 0).
-          section_tie =
-            SectionTie(n_coupled,
-                       transverse_per_station ? station_end - station_begin
-                                              : n_layers,
-                       transverse_modes);
+          section_tie = SectionTie(n_coupled, n_layers, transverse_modes);
           for (unsigned int c = 0; c < n_coupled; ++c)
             section_tie.set_node_mass(c, node_mass[c]);
           if (z_symmetry)
@@ -125,11 +119,11 @@ namespace YarnImpact
               // only).
               if (transverse_modes > 0)
                 section_tie.add_particle(1. / dem.inverse_mass(s, f),
-                                         transverse_per_station ? q : cell,
-                                         transverse_per_station ? 0. : xi,
-                                         {{1.,
-                                           (*dem.fibre_y)[f] / semi_axis,
-                                           (*dem.fibre_z)[f] / semi_axis}},
+                                         cell,
+                                         xi,
+                                         {1.,
+                                          (*dem.fibre_y)[f] / semi_axis,
+                                          (*dem.fibre_z)[f] / semi_axis},
                                          nodes,
                                          values);
             }

@@ -47,9 +47,6 @@ namespace YarnImpact
        * 1, the section's mean per node layer (`section mean`); 3, its mean
        * and linear moments (`section affine`) [-]. */
       unsigned int transverse_modes = 0;
-      /** With a coarse tie: its rows per DEM station (`station mean`)
-       * rather than per FE node layer. */
-      bool transverse_per_station = false;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

@@ -75,9 +75,6 @@ namespace YarnImpact
        * (HybridParameters::transverse_modes; 0: y and z by `constraint`,
        * sphere by sphere) [-]. */
       unsigned int transverse_modes = 0;
-      /** The coarse tie's rows per DEM station (the section's mean at
-       * each x of the spheres) rather than per FE node layer. */
-      bool transverse_per_station = false;
       /** With transverse_modes > 0: y and z tied on the section's coarse
        * modes only (doc/hybrid.md section 2.5); x by the bars' ties. */
       SectionTie section_tie;
