@@ -121,9 +121,9 @@ namespace YarnImpact
                 section_tie.add_particle(1. / dem.inverse_mass(s, f),
                                          cell,
                                          xi,
-                                         {1.,
-                                          (*dem.fibre_y)[f] / semi_axis,
-                                          (*dem.fibre_z)[f] / semi_axis},
+                                         {{1.,
+                                           (*dem.fibre_y)[f] / semi_axis,
+                                           (*dem.fibre_z)[f] / semi_axis}},
                                          nodes,
                                          values);
             }
