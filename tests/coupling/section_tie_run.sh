@@ -4,7 +4,7 @@
 # transverse tie on the section's mean per node layer (Hybrid/Transverse
 # tie = section mean, doc/hybrid.md section 2.5): the case of
 # fibre_bars_run.sh (the paper's yarn at 120 m/s, a 3 mm DEM part) over
-# the first 0.6 us. Physics and consistency checks, no recorded numbers:
+# the first 0.4 us. Physics and consistency checks, no recorded numbers:
 # - the energy balance, the bars, both ties and their multipliers'
 #   work included, within 0.05 % of the initial energy (the run's own
 #   check): multipliers that did work on the admissible velocities would
@@ -20,7 +20,7 @@
 # - `section affine` runs and conserves momentum too;
 # - the coarse tie with the continuum far field refused by --check with
 #   one line naming the parameter.
-# In 0.6 us the transverse front (0.4 mm) does not reach the overlap: the
+# In 0.4 us the transverse front (0.3 mm) does not reach the overlap: the
 # tie there carries the section's small motion under the bar wave, and
 # the run checks the tie inside the whole model (its momentum, energy,
 # ranks and restart). The multipliers' algebra (balance, the constraints
@@ -36,7 +36,7 @@ tie_prm() {
   cat "$src/prm/hybrid/km2_120ms_hybrid.prm"
   printf 'subsection Hybrid\n  set DEM half-length = 3e-3\n'
   printf '  set Far field = fibre bars\n  set Transverse tie = %s\nend\n' "${tie:-section mean}"
-  printf 'subsection Time\n  set End time = 0.6e-6\nend\n'
+  printf 'subsection Time\n  set End time = 0.4e-6\nend\n'
   printf 'subsection Output\n  set Directory = %s\n  set Snapshot interval = 0\n' "$1"
   printf '  set History interval = 0.05e-6\nend\n'
   printf 'subsection Verification\n  set Checks = energy\n'
