@@ -79,8 +79,7 @@ namespace YarnImpact
       prm.declare_entry(
         "Transverse tie",
         "field",
-        Patterns::Selection(
-          "field|section mean|section affine|node projection"),
+        Patterns::Selection("field|section mean|section affine"),
         "Model = hybrid, Far field = fibre bars: how the overlap ties the "
         "spheres' y and z motion to the continuum (doc/hybrid.md section "
         "2.5). field: every sphere moves with the continuum's field at its "
@@ -114,10 +113,9 @@ namespace YarnImpact
       fibre_bars            = prm.get("Far field") == "fibre bars";
       bars_per_cell         = prm.get_integer("Fibre bars per FE cell");
       const std::string tie = prm.get("Transverse tie");
-      transverse_modes      = tie == "section mean"      ? 1
-                              : tie == "section affine"  ? 3
-                              : tie == "node projection" ? 8
-                                                         : 0;
+      transverse_modes      = tie == "section mean"     ? 1
+                              : tie == "section affine" ? 3
+                                                        : 0;
       prm.leave_subsection();
     }
 

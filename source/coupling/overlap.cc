@@ -77,11 +77,7 @@ namespace YarnImpact
       // rows per node layer and section mode.
       if (transverse_modes > 0)
         {
-          // 8: the continuum's own space, one row per node.
-          section_tie =
-            SectionTie(n_coupled,
-                       n_layers,
-                       transverse_modes == 8 ? 0 : transverse_modes);
+          section_tie = SectionTie(n_coupled, n_layers, transverse_modes);
           for (unsigned int c = 0; c < n_coupled; ++c)
             section_tie.set_node_mass(c, node_mass[c]);
           if (z_symmetry)

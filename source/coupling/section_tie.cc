@@ -20,12 +20,10 @@ namespace YarnImpact
       , n_modes(n_modes)
       , node_mass(n_nodes, 0.)
       , fixed(3 * std::size_t(n_nodes), 0)
-      , node_rows(std::size_t(n_modes == 0 ? n_nodes : n_layers * n_modes) *
-                    n_nodes,
-                  0.)
+      , node_rows(std::size_t(n_layers) * n_modes * n_nodes, 0.)
     {
-      if (n_modes != 0 && n_modes != 1 && n_modes != 3)
-        throw std::invalid_argument("SectionTie: 0, 1 or 3 section modes");
+      if (n_modes != 1 && n_modes != 3)
+        throw std::invalid_argument("SectionTie: 1 or 3 section modes");
     }
 
 
@@ -45,22 +43,11 @@ namespace YarnImpact
     }
 
 
-    unsigned int
+    void
     SectionTie::particle_rows(const unsigned int i,
                               unsigned int *rows,
                               double *values) const
     {
-      // The continuum's own space: one row per node, the shape values.
-      if (n_modes == 0)
-        {
-          const unsigned int n = particle_start[i + 1] - particle_start[i];
-          for (unsigned int e = 0; e < n; ++e)
-            {
-              rows[e]   = particle_nodes[particle_start[i] + e];
-              values[e] = particle_shapes[particle_start[i] + e];
-            }
-          return n;
-        }
       // Two layers (the hat functions of the cell's two node layers),
       // n_modes modes each; a particle on a layer has zeros on the next.
       const unsigned int l = particle_layer[i];
@@ -74,7 +61,6 @@ namespace YarnImpact
               (side == 0 ? 1. - xi : (l + 1 < n_layers ? xi : 0.)) *
               particle_modes[i][k];
           }
-      return 2 * n_modes;
     }
 
 
@@ -109,18 +95,13 @@ namespace YarnImpact
       particle_layer.push_back(layer);
       particle_xi.push_back(xi);
       particle_modes.push_back(modes);
-      particle_nodes.insert(particle_nodes.end(), nodes.begin(), nodes.end());
-      particle_shapes.insert(particle_shapes.end(),
-                             shape_values.begin(),
-                             shape_values.end());
-      particle_start.push_back(particle_nodes.size());
       const unsigned int i = particle_mass.size() - 1;
-      unsigned int rows[8];
-      double values[8];
-      const unsigned int n_e = particle_rows(i, rows, values);
-      const std::size_t n    = node_mass.size();
+      unsigned int rows[6];
+      double values[6];
+      particle_rows(i, rows, values);
+      const std::size_t n = node_mass.size();
       // G_f = G_d N: row r of node J gains c_ri N_J(X_i).
-      for (unsigned int e = 0; e < n_e; ++e)
+      for (unsigned int e = 0; e < 2 * n_modes; ++e)
         for (unsigned int p = 0; p < nodes.size(); ++p)
           node_rows[rows[e] * n + nodes[p]] +=
             mass * values[e] * shape_values[p];
@@ -141,13 +122,13 @@ namespace YarnImpact
       // The spheres' part, G_d M_d^-1 G_d^T = sum_i m_i g_i g_i^T with
       // g_ri = phi_l psi_k, the same for y and z.
       std::vector<double> spheres(std::size_t(n_r) * n_r, 0.);
-      unsigned int rows[8];
-      double values[8];
+      unsigned int rows[6];
+      double values[6];
       for (unsigned int i = 0; i < particle_mass.size(); ++i)
         {
-          const unsigned int n_e = particle_rows(i, rows, values);
-          for (unsigned int e = 0; e < n_e; ++e)
-            for (unsigned int q = 0; q < n_e; ++q)
+          particle_rows(i, rows, values);
+          for (unsigned int e = 0; e < 2 * n_modes; ++e)
+            for (unsigned int q = 0; q < 2 * n_modes; ++q)
               spheres[rows[e] * n_r + rows[q]] +=
                 particle_mass[i] * values[e] * values[q];
         }
@@ -211,8 +192,8 @@ namespace YarnImpact
       const unsigned int n_r = n_rows();
       const std::size_t n    = node_mass.size();
       const std::size_t n_p  = particle_mass.size();
-      unsigned int rows[8];
-      double values[8];
+      unsigned int rows[6];
+      double values[6];
       std::vector<double> mu(n_r);
       for (std::size_t j = 0; j < n; ++j)
         {
@@ -233,8 +214,8 @@ namespace YarnImpact
           std::fill(mu.begin(), mu.end(), 0.);
           for (std::size_t i = 0; i < n_p; ++i)
             {
-              const unsigned int n_e = particle_rows(i, rows, values);
-              for (unsigned int e = 0; e < n_e; ++e)
+              particle_rows(i, rows, values);
+              for (unsigned int e = 0; e < 2 * n_modes; ++e)
                 mu[rows[e]] -= values[e] * particle_force[3 * i + d];
             }
           for (unsigned int r = 0; r < n_r; ++r)
@@ -264,9 +245,9 @@ namespace YarnImpact
           // The spheres: f + G_d^T mu; the nodes: f - G_f^T mu.
           for (std::size_t i = 0; i < n_p; ++i)
             {
-              const unsigned int n_e = particle_rows(i, rows, values);
-              double g               = 0.;
-              for (unsigned int e = 0; e < n_e; ++e)
+              particle_rows(i, rows, values);
+              double g = 0.;
+              for (unsigned int e = 0; e < 2 * n_modes; ++e)
                 g += values[e] * mu[rows[e]];
               constraint_force[3 * i + d] = particle_mass[i] * g;
               particle_acceleration[3 * i + d] =
@@ -292,20 +273,20 @@ namespace YarnImpact
     {
       const unsigned int n_r = n_rows();
       const std::size_t n    = node_mass.size();
-      unsigned int rows[8];
-      double values[8];
+      unsigned int rows[6];
+      double values[6];
       double largest = 0.;
       for (unsigned int d = 1; d < 3; ++d)
         {
           std::vector<double> g(n_r, 0.), scale(n_r, 0.);
           for (std::size_t i = 0; i < particle_mass.size(); ++i)
             {
-              const unsigned int n_e = particle_rows(i, rows, values);
-              for (unsigned int e = 0; e < n_e; ++e)
+              particle_rows(i, rows, values);
+              for (unsigned int e = 0; e < 2 * n_modes; ++e)
                 {
                   g[rows[e]] +=
                     particle_mass[i] * values[e] * particle_velocity[3 * i + d];
-                  if (n_modes == 0 || rows[e] % n_modes == 0)
+                  if (rows[e] % n_modes == 0)
                     scale[rows[e]] += particle_mass[i] * values[e];
                 }
             }
@@ -313,9 +294,8 @@ namespace YarnImpact
             {
               for (std::size_t j = 0; j < n; ++j)
                 g[r] -= node_rows[r * n + j] * node_velocity[3 * j + d];
-              largest = std::max(largest,
-                                 std::abs(g[r]) /
-                                   scale[n_modes == 0 ? r : r - r % n_modes]);
+              largest =
+                std::max(largest, std::abs(g[r]) / scale[r - r % n_modes]);
             }
         }
       return largest;

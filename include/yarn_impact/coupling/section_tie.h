@@ -99,7 +99,7 @@ namespace YarnImpact
       unsigned int
       n_rows() const
       {
-        return n_modes == 0 ? node_mass.size() : n_layers * n_modes;
+        return n_layers * n_modes;
       }
       unsigned int
       n_particles() const
@@ -116,15 +116,11 @@ namespace YarnImpact
       std::vector<unsigned int> particle_layer;
       std::vector<double> particle_xi;
       std::vector<std::array<double, 3>> particle_modes;
-      /** Per particle: its nodes and shape values (from particle_start),
-       * the rows of the node-space tie (n_modes = 0). */
-      std::vector<unsigned int> particle_start{0}, particle_nodes;
-      std::vector<double> particle_shapes;
       /** G_f, dense: rows by nodes [kg]. */
       std::vector<double> node_rows;
       /** Per particle's rows: r and the row value over the mass,
        * phi_l psi_k [-]. */
-      unsigned int
+      void
       particle_rows(const unsigned int i,
                     unsigned int *rows,
                     double *values) const;
