@@ -21,8 +21,8 @@ Each run is the paper's case (prm/km2_120ms_fe.prm, the linear law of
 prm/study/fe_linear.prm, the progressive law of
 prm/km2_120ms_fe_progressive.prm, model `progressive`, not in the default
 --models, prm/km2_120ms_dem.prm, and the hybrid yarn with
-fibre bars of prm/hybrid/km2_600ms_fibre_bars.prm with 400 FE cells along
-the axis, model `hybrid`, not in
+fibre bars and 400 FE cells along the axis of
+prm/hybrid/km2_600ms_fibre_bars.prm, model `hybrid`, not in
 the default --models) at another impact velocity,
 without snapshots, stopping 2 us after the yarn is cut through or at 40 us.
 Model `fabric` (not in the default --models; on --np ranks) runs the ply of
@@ -82,11 +82,10 @@ MODELS = {
                "isotropic\nend\n"),
     "progressive": ("fe", "prm/km2_120ms_fe_progressive.prm", ""),
     "dem": ("dem", "prm/km2_120ms_dem.prm", ""),
-    # FE cells of 5 trusses, four times shorter than the ready case's: they
-    # carry the short waves the transverse front brings into the overlap,
-    # which set when the bars are cut at the clamp (doc/hybrid.md 5.9).
-    "hybrid": ("hybrid", "prm/hybrid/km2_600ms_fibre_bars.prm",
-               "subsection FE\n  set Cells along the axis = 400\nend\n"),
+    # The ready case's FE cells of 5 trusses carry the short waves the
+    # transverse front brings into the overlap, which set when the bars are
+    # cut at the clamp (doc/hybrid.md 5.9).
+    "hybrid": ("hybrid", "prm/hybrid/km2_600ms_fibre_bars.prm", ""),
     "fabric": ("fabric", fabric_ballistics.BASE, ""),
 }
 LABELS = {"charmetant": "FE, Charmetant law",

@@ -64,6 +64,8 @@ namespace YarnImpact
           nose.station_end                   = layout.dem_trusses + 1;
           if (layout.fibre_bars)
             nose.bars = &bars;
+          nose.transverse_modes = left.transverse_modes =
+            hybrid.transverse_modes;
           if (layout.whole)
             {
               // The side x < 0 as the mirror image of the side x > 0: the

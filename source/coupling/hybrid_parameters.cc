@@ -86,6 +86,18 @@ namespace YarnImpact
         "overlap passes the DEM part's short waves with cells of a few "
         "trusses (doc/hybrid.md section 5.9), where the FE model alone is "
         "identified on its own cells; 0: FE/Cells along the axis [-].");
+      prm.declare_entry(
+        "Transverse tie",
+        "field",
+        Patterns::Selection("field|section mean|section affine"),
+        "Model = hybrid, Far field = fibre bars: how the overlap ties the "
+        "spheres' y and z motion to the continuum (doc/hybrid.md section "
+        "2.5). field: every sphere moves with the continuum's field at its "
+        "reference position. section mean: per FE node layer (its hat "
+        "function along x) only the spheres' mass-weighted mean y and z "
+        "velocity equals the continuum's at the spheres, so that fibres move "
+        "relative to each other across the section. section affine: the "
+        "mean and the moments linear in the section coordinates.");
       prm.leave_subsection();
     }
 
@@ -108,9 +120,13 @@ namespace YarnImpact
               "must be 0 (no DEM part at the clamp) or a positive length "
               "(got " +
                 prm.get("Clamp DEM length") + ")");
-      fibre_bars     = prm.get("Far field") == "fibre bars";
-      bars_per_cell  = prm.get_integer("Fibre bars per FE cell");
-      fe_axial_cells = prm.get_integer("FE cells along the axis");
+      fibre_bars            = prm.get("Far field") == "fibre bars";
+      bars_per_cell         = prm.get_integer("Fibre bars per FE cell");
+      fe_axial_cells        = prm.get_integer("FE cells along the axis");
+      const std::string tie = prm.get("Transverse tie");
+      transverse_modes      = tie == "section mean"     ? 1
+                              : tie == "section affine" ? 3
+                                                        : 0;
       prm.leave_subsection();
     }
 
@@ -293,6 +309,14 @@ namespace YarnImpact
               "must be 0 for Model = hybrid (the overlap's weights are per "
               "cell layer; refine with FE/Cells along the axis)");
       const HybridLayout l = hybrid_layout(shared, fe, dem, hybrid);
+      // With the continuum far field the spheres' x is the continuum's
+      // too, sphere by sphere; the coarse tie is built on the bars' own
+      // axial tie.
+      require(hybrid.transverse_modes == 0 || l.fibre_bars,
+              "Hybrid/Transverse tie",
+              "must be field unless Hybrid/Far field = fibre bars (the "
+              "section's coarse tie leaves each fibre's axial motion to its "
+              "bars)");
       if (l.fibre_bars)
         {
           require(l.clamp_cells == 0,

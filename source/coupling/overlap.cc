@@ -73,6 +73,19 @@ namespace YarnImpact
                             fibre_vertices[f],
                             fibre_values[f]);
         }
+      // The coarse transverse tie (section 2.5) on the same shape values:
+      // rows per node layer and section mode.
+      if (transverse_modes > 0)
+        {
+          section_tie = SectionTie(n_coupled, n_layers, transverse_modes);
+          for (unsigned int c = 0; c < n_coupled; ++c)
+            section_tie.set_node_mass(c, node_mass[c]);
+          if (z_symmetry)
+            for (unsigned int v = 0; v < n_vertices; ++v)
+              if (std::abs(section.get_vertices()[v][1]) < 1e-9 * semi_axis)
+                for (unsigned int layer = 0; layer < n_layers; ++layer)
+                  section_tie.fix_component(layer * n_vertices + v, 2);
+        }
       for (unsigned int q = 0; q < station_end - station_begin; ++q)
         {
           const unsigned int s = station_of(q);
@@ -101,9 +114,23 @@ namespace YarnImpact
               constraint.add_particle(1. / dem.inverse_mass(s, f),
                                       nodes,
                                       values);
+              // The affine modes in the reference section coordinates,
+              // scaled by the smaller semi-axis (for the system's scale
+              // only).
+              if (transverse_modes > 0)
+                section_tie.add_particle(1. / dem.inverse_mass(s, f),
+                                         cell,
+                                         xi,
+                                         {{1.,
+                                           (*dem.fibre_y)[f] / semi_axis,
+                                           (*dem.fibre_z)[f] / semi_axis}},
+                                         nodes,
+                                         values);
             }
         }
       constraint.factorize();
+      if (transverse_modes > 0)
+        section_tie.factorize();
       if (bars != nullptr)
         set_up_axial_ties(layout, dem);
       const unsigned int n_p = constraint.n_particles();
@@ -156,19 +183,29 @@ namespace YarnImpact
       Utilities::MPI::sum(node_velocity, communicator, node_velocity);
       Utilities::MPI::sum(particle_force, communicator, particle_force);
 
-      constraint.accelerations(node_force.data(),
-                               particle_force.data(),
-                               node_acceleration.data(),
-                               particle_acceleration.data(),
-                               multipliers.data());
+      if (transverse_modes > 0)
+        section_tie.accelerations(node_force.data(),
+                                  particle_force.data(),
+                                  node_acceleration.data(),
+                                  particle_acceleration.data(),
+                                  multipliers.data(),
+                                  node_multipliers.data());
+      else
+        constraint.accelerations(node_force.data(),
+                                 particle_force.data(),
+                                 node_acceleration.data(),
+                                 particle_acceleration.data(),
+                                 multipliers.data());
       if (bars != nullptr)
         work += dt * tie_axially();
       // The multipliers' power on the spheres, sum_i lambda_i . v_i: the
       // constraints hold, so it is (N^T lambda) . v on the overlap's
-      // nodes, the same sum in the same order on every rank.
-      constraint.generalised_force(zero_node_force.data(),
-                                   multipliers.data(),
-                                   node_multipliers.data());
+      // nodes (G_f^T mu under the section tie), the same sum in the same
+      // order on every rank.
+      if (transverse_modes == 0)
+        constraint.generalised_force(zero_node_force.data(),
+                                     multipliers.data(),
+                                     node_multipliers.data());
       double power = 0.;
       for (unsigned int k = 0; k < node_velocity.size(); ++k)
         power += node_multipliers[k] * node_velocity[k];

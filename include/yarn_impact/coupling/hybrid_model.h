@@ -45,6 +45,12 @@ namespace YarnImpact
        * yarn, in place of `FE/Cells along the axis`; 0: that entry [-]. */
       unsigned int fe_axial_cells = 0;
 
+      /** The overlap's transverse tie (`Transverse tie`, doc/hybrid.md
+       * section 2.5): 0, every sphere on the continuum's field (`field`);
+       * 1, the section's mean per node layer (`section mean`); 3, its mean
+       * and linear moments (`section affine`) [-]. */
+      unsigned int transverse_modes = 0;
+
       static void
       declare_parameters(dealii::ParameterHandler &prm);
       void

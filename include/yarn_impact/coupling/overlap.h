@@ -6,6 +6,7 @@
 #include <yarn_impact/coupling/bridging_domain.h>
 #include <yarn_impact/coupling/fibre_bars.h>
 #include <yarn_impact/coupling/hybrid_model.h>
+#include <yarn_impact/coupling/section_tie.h>
 #include <yarn_impact/dem/dem_model.h>
 
 #include <deal.II/grid/tria.h>
@@ -70,6 +71,13 @@ namespace YarnImpact
       }
 
       BridgingConstraint constraint;
+      /** The transverse tie's section modes per node layer
+       * (HybridParameters::transverse_modes; 0: y and z by `constraint`,
+       * sphere by sphere) [-]. */
+      unsigned int transverse_modes = 0;
+      /** With transverse_modes > 0: y and z tied on the section's coarse
+       * modes only (doc/hybrid.md section 2.5); x by the bars' ties. */
+      SectionTie section_tie;
       /** Coupled FE nodes owned here: coupled index and local dofs. */
       std::vector<std::pair<unsigned int, std::array<unsigned int, 3>>>
         owned_nodes;
