@@ -192,8 +192,9 @@ namespace YarnImpact
 
     Schedule &schedule = loop.schedule;
     schedule.set_critical_step(model->stable_time_step());
-    loop.axial      = model->axial_properties();
-    const double dt = schedule.time_step();
+    loop.initial_critical_step = model->stable_time_step();
+    loop.axial                 = model->axial_properties();
+    const double dt            = schedule.time_step();
     if (!(dt > 0.) || p.time.end_time / dt > double(p.time.max_steps))
       {
         std::ostringstream s;
@@ -297,6 +298,18 @@ namespace YarnImpact
       fail(loop,
            "the stable time step is not a positive number (a collapsed or "
            "inverted element?)");
+    // A step a million times below the set-up's would only crawl on (a
+    // degenerate element sets it): stop with the cause rather than run on
+    // without end.
+    if (critical < 1e-6 * loop.initial_critical_step)
+      {
+        std::ostringstream cause;
+        cause << "the stable time step fell to " << critical * 1e9
+              << " ns, below a millionth of its "
+              << loop.initial_critical_step * 1e9
+              << " ns at the start (an element has degenerated)";
+        fail(loop, cause.str());
+      }
     loop.schedule.set_critical_step(critical);
   }
 

@@ -80,6 +80,9 @@ namespace YarnImpact
       double last_progress = 0., last_checkpoint = 0.;
       /** A restart of a run that had already finished: no step left. */
       bool finished = false;
+      /** The model's stable step at set-up (or at the restart) [s]: the
+       * reference against which a collapsing step stops the run. */
+      double initial_critical_step = 0.;
     };
 
     // The named parts of run_timed(), in their order.

@@ -415,7 +415,11 @@ namespace YarnImpact
           // and such a cell only degenerates (its altitude, and with it
           // the stable step, can fall to nothing: a cell torn at 5000 m/s
           // reached 2e-17 m).
-          const bool parted = progress && cells.damage[c] >= 1. &&
+          // Under the hybrid's fibre bars (Kind::erosion) the bars are the
+          // fibres: a cell stretched to twice its length lies among their
+          // broken ends, and parts the same way.
+          const bool parted = (failure.kind == Kind::erosion ||
+                               (progress && cells.damage[c] >= 1.)) &&
                               r.max_elongation > FailureLaw::parted_log_stretch;
           if (fails && (!std::isfinite(cell_energy) || r.min_J < 0.2 || parted))
             {
