@@ -84,11 +84,12 @@ namespace YarnImpact
       double end = dem.empty() ? 0. : dem.back().time;
       for (const ComparedRun &run : runs)
         end = std::min(end, run.history.empty() ? 0. : run.history.back().time);
+      const double first_dem_break = first_failure(dem);
       for (unsigned int m = 0; m < runs.size(); ++m)
         if (m != reference)
           {
             ComparisonSummary &s = summaries[m];
-            s.first_dem_break    = first_failure(dem);
+            s.first_dem_break    = first_dem_break;
             s.first_fe_failure   = first_failure(runs[m].history);
             s.compared_until =
               (s.first_dem_break >= 0. ? std::min(s.first_dem_break, end)

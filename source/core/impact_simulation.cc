@@ -190,11 +190,11 @@ namespace YarnImpact
                                             model->extra_column_names());
       });
 
-    Schedule &schedule = loop.schedule;
-    schedule.set_critical_step(model->stable_time_step());
+    Schedule &schedule         = loop.schedule;
     loop.initial_critical_step = model->stable_time_step();
-    loop.axial                 = model->axial_properties();
-    const double dt            = schedule.time_step();
+    schedule.set_critical_step(loop.initial_critical_step);
+    loop.axial      = model->axial_properties();
+    const double dt = schedule.time_step();
     if (!(dt > 0.) || p.time.end_time / dt > double(p.time.max_steps))
       {
         std::ostringstream s;

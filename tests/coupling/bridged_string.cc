@@ -36,20 +36,14 @@
 #include <string>
 #include <vector>
 
+#include "verdicts.h"
+
 using namespace BridgedString;
 
 namespace
 {
-  std::ofstream verdicts("output");
-  bool all_passed = true;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    verdicts << (ok ? "PASS " : "FAIL ") << what << '\n';
-    std::printf("%s %s\n", ok ? "PASS" : "FAIL", what.c_str());
-    all_passed = all_passed && ok;
-  }
+  using Verdicts::all_passed;
+  using Verdicts::check;
 
 
   void

@@ -34,6 +34,8 @@
 #include <string>
 #include <vector>
 
+#include "verdicts.h"
+
 using namespace YarnImpact::Coupling;
 
 namespace
@@ -43,16 +45,8 @@ namespace
   constexpr double l       = 12e-6;
   constexpr unsigned int M = 21, n_w = 4;
 
-  std::ofstream verdicts("output");
-  bool all_passed = true;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    verdicts << (ok ? "PASS " : "FAIL ") << what << '\n';
-    std::printf("%s %s\n", ok ? "PASS" : "FAIL", what.c_str());
-    all_passed = all_passed && ok;
-  }
+  using Verdicts::all_passed;
+  using Verdicts::check;
 
 
   /** The coupled fibre: spheres 0 .. n_s (the last at a; @p n_only

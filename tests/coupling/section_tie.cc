@@ -39,6 +39,8 @@
 #include <string>
 #include <vector>
 
+#include "verdicts.h"
+
 using namespace YarnImpact::Coupling;
 
 namespace
@@ -47,16 +49,8 @@ namespace
   // The section cell's vertices (y, z).
   constexpr double vertex[4][2] = {{-1., -1.}, {1., -1.}, {-1., 1.}, {1., 1.}};
 
-  std::ofstream verdicts("output");
-  bool all_passed = true;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    verdicts << (ok ? "PASS " : "FAIL ") << what << '\n';
-    std::printf("%s %s\n", ok ? "PASS" : "FAIL", what.c_str());
-    all_passed = all_passed && ok;
-  }
+  using Verdicts::all_passed;
+  using Verdicts::check;
 
   /** A small overlap and its tie. */
   struct Case
