@@ -345,9 +345,19 @@ def extract_kink(log):
 def extract_consistency(log):
     """The mass per length and axial stiffness lines of each model against
     the DEM: mass_fe, mass_dem, mass_diff_pct (FE/DEM - 1), and for another
-    model M (the hybrid) mass_M and mass_M_diff_pct; the same with ea."""
+    model M (the hybrid) mass_M and mass_M_diff_pct; the same with ea;
+    the wall time of each model's run (wall_fe_s, wall_dem_s, wall_M_s) and
+    its ratio to the DEM's (wall_M_ratio), where the run printed them."""
     q = {}
     for line in lines_of(log):
+        m = re.search(r"wall time \[s\]:\s+(\w+) ([\d.]+), DEM ([\d.]+) "
+                      r"\(\w+/DEM = ([\d.]+)\)", line)
+        if m:
+            model = m.group(1).lower()
+            q["wall_" + model + "_s"] = float(m.group(2))
+            q["wall_dem_s"] = float(m.group(3))
+            q["wall_" + model + "_ratio"] = float(m.group(4))
+            continue
         for key, pat in (("mass", r"mass per length \[mg/m\]:"),
                          ("ea", r"axial stiffness EA \[N\]:")):
             if not re.search(pat, line):

@@ -197,6 +197,14 @@ namespace YarnImpact
                 << s.first_fe_failure * 1e6 << " us\n";
           else
             out << "no\n";
+          // The cost of the same problem, the runs one after the other on
+          // the same ranks.
+          if (run.wall_time >= 0. && dem.wall_time > 0.)
+            out << std::setprecision(1) << "  " << field("wall time [s]:")
+                << name << ' ' << run.wall_time << ", " << ref << ' '
+                << dem.wall_time << std::setprecision(3) << " (" << name << '/'
+                << ref << " = " << run.wall_time / dem.wall_time << ")\n"
+                << std::setprecision(4);
           out << "  energy budget at the end [mJ]: projectile kinetic, yarn "
                  "kinetic, elastic, contact, dissipated, error [%]\n";
           for (const ComparedRun *r : {&run, &dem})

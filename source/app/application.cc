@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -363,6 +364,8 @@ namespace YarnImpact
         std::string run_errors;
         for (const std::string &type : models)
           {
+            // Each model's cost, its set-up included, for the comparison.
+            const auto started = std::chrono::steady_clock::now();
             CheckpointOptions checkpoints;
             checkpoints.restart = restart;
             // With several models, the end state of each but the last
@@ -405,6 +408,10 @@ namespace YarnImpact
               simulation.model().mass() / parameters.shared.yarn.length;
             run.axial_stiffness =
               simulation.model().axial_properties().axial_stiffness();
+            if (!Parameters::deterministic(output.verbosity))
+              run.wall_time = std::chrono::duration<double>(
+                                std::chrono::steady_clock::now() - started)
+                                .count();
             runs.push_back(std::move(run));
           }
         // Several models: each compared with the DEM, when it ran.

@@ -159,10 +159,18 @@ namespace YarnImpact
                 left_bars.compute_forces(*left_fe_model, communicator);
             }
           const double f_dem = dem_model->compute_forces(projectile, dt);
-          if (f_fe != 0. || f_left != 0.)
-            throw RunError(
-              "the projectile touches the FE part of the hybrid yarn: raise "
-              "Hybrid/DEM half-length");
+          // Before the cut, a touch means fibres the DEM part should carry
+          // would wrap the nose in the continuum; after it (every fibre
+          // broken, which no later step undoes) the FE part's own penalty
+          // contact is the model there (doc/hybrid.md 3.1).
+          if ((f_fe != 0. || f_left != 0.) && fe_touch_displacement < 0.)
+            {
+              if (!every_fibre_broken())
+                throw RunError(
+                  "the projectile touches the FE part of the hybrid yarn "
+                  "before the yarn is cut: raise Hybrid/DEM half-length");
+              fe_touch_displacement = projectile.displacement();
+            }
           if (clamp_model && clamp_model->compute_forces(projectile, dt) != 0.)
             throw RunError(
               "the projectile touches the DEM part at the clamp: lower "
@@ -172,7 +180,7 @@ namespace YarnImpact
             left.couple(*left_fe_model, dt, communicator);
           if (clamp_model)
             clamp.couple(*fe_model, dt, communicator);
-          return f_fe + f_dem;
+          return f_fe + f_left + f_dem;
         }
 
         void
@@ -262,6 +270,7 @@ namespace YarnImpact
               if (layout.fibre_bars)
                 left_bars.save_state(out);
             }
+          out.put(fe_touch_displacement);
         }
 
         void
@@ -285,6 +294,7 @@ namespace YarnImpact
               if (layout.fibre_bars)
                 left_bars.load_state(in);
             }
+          in.get(fe_touch_displacement);
         }
 
         /** The DEM parts' broken trusses (part "dem", and "clamp" for the
@@ -349,6 +359,11 @@ namespace YarnImpact
             far_field(bars, "");
           if (left_fe_model && layout.fibre_bars)
             far_field(left_bars, " at x < 0");
+          if (fe_touch_displacement >= 0.)
+            s << "Hybrid contact: the projectile touched the FE part after "
+                 "the yarn was cut, at a projectile displacement of "
+              << std::setprecision(6) << fe_touch_displacement * 1e3
+              << " mm; the FE part's contact acted from then on\n";
           for (const Overlap *o : overlaps())
             {
               const char *which = (o == &nose   ? ""
@@ -415,8 +430,14 @@ namespace YarnImpact
         Overlap left;
         FibreBars left_bars;
 
-        /** Whether every fibre has a broken truss in the DEM part or a
-         * broken bar (under fibre bars; collective). */
+        /** The projectile's displacement [m] at the first step it touched
+         * the FE part, the yarn cut; from then on the FE part's contact
+         * acts without a check (broken fibres stay broken). Negative
+         * while it has not touched. */
+        double fe_touch_displacement = -1.;
+
+        /** Whether the yarn is cut: every fibre has a broken truss in the
+         * DEM part or (under fibre bars) a broken bar (collective). */
         bool
         every_fibre_broken() const
         {
@@ -430,8 +451,10 @@ namespace YarnImpact
                 broken[f] = 1.;
           dealii::Utilities::MPI::max(broken, communicator, broken);
           for (unsigned int f = 0; f < dem.n_fibres; ++f)
-            if (broken[f] == 0. && !bars.fibre_broken(f) &&
-                !(left_fe_model && left_bars.fibre_broken(f)))
+            if (broken[f] == 0. &&
+                !(layout.fibre_bars &&
+                  (bars.fibre_broken(f) ||
+                   (left_fe_model && left_bars.fibre_broken(f)))))
               return false;
           return dem.n_fibres > 0;
         }

@@ -23,6 +23,9 @@ namespace YarnImpact
       double mass_per_length = 0.;
       /** Its axial stiffness EA as discretised [N]. */
       double axial_stiffness = 0.;
+      /** The wall-clock time of its run, set-up included [s]; negative
+       * where not measured (the deterministic summaries of the tests). */
+      double wall_time = -1.;
     };
 
     /** The label of the model @p name (ImpactModel::name()) in the
