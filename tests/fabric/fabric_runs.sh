@@ -52,7 +52,9 @@
 #  restart      the same Charmetant case stopped by SIGTERM at row 25
 #               (2.5 us, the yarns in contact) and continued with
 #               --restart, on 1 and 2 ranks: the history byte for byte the
-#               uninterrupted run's.
+#               uninterrupted run's; the same for the 3 x 3 patch struck by
+#               the sphere, no failure, stopped at 1.25 us with tied yarn
+#               contacts (1 rank).
 #  single_warp  1 warp yarn across 5 weft yarns against Model = fe with
 #               the same crimped yarn (check_history.py single_warp).
 #  mesh_file    (needs WRITE_PATCH_MESH) the 4 x 4 patch, no failure, 3 us,
@@ -250,6 +252,21 @@ case $case in
         "restart on $n ranks: the history is the uninterrupted run's, byte for byte" \
         "restart on $n ranks: the history differs from the uninterrupted run's"
     done
+    # The 3 x 3 patch struck by the sphere is mirror-symmetric: at row 25
+    # (1.25 us) the yarn contact holds tied contacts (doc/fabric.md section
+    # 10), whose faces and histories the checkpoint carries.
+    extra="${no_failure}subsection Projectile\n  set Shape = sphere\nend\n"
+    patch tie_ref 3 3 1.6e-6 0.05e-6 "$extra" > tie_ref.prm
+    patch tie_cut 3 3 1.6e-6 0.05e-6 "$extra" > tie_cut.prm
+    run 1 tie_ref.prm
+    [ "$rc" -eq 0 ] || fail "tied reference: exit $rc: $(head -c 300 stderr)"
+    YARN_IMPACT_SIGNAL_AT_ROW=25 run 1 tie_cut.prm
+    [ "$rc" -eq 6 ] || fail "tied stop: expected exit 6, got $rc: $(head -c 300 stderr)"
+    run 1 --restart tie_cut.prm
+    [ "$rc" -eq 0 ] || fail "tied restart: exit $rc: $(head -c 300 stderr)"
+    histories_agree tie_ref/history_fabric.csv tie_cut/history_fabric.csv \
+      "restart with tied contacts: the history is the uninterrupted run's, byte for byte" \
+      "restart with tied contacts: the history differs from the uninterrupted run's"
     ;;
   single_warp)
     patch fabric 1 5 0.5e-6 0.01e-6 "$no_failure" > fabric.prm
