@@ -120,12 +120,17 @@ namespace YarnImpact
        * accepts a point whose distance to its closest point X is at most
        * sqrt(gap^2 + 1e-16 (|X_xi|^2 + |X_eta|^2)), that is at most the
        * depth plus 2.5e-8 of the extent, and X lies within 1e-8 of the
-       * extent of the box (xi, eta within 1e-9 of [0, 1]).
+       * extent of the box (xi, eta within 1e-9 of [0, 1]). The box's
+       * largest extent [m] goes to @p extent.
        */
       inline bool
-      may_touch(const double *c[4], const double *p, const double depth)
+      may_touch(const double *c[4],
+                const double *p,
+                const double depth,
+                double &extent)
       {
-        double lo[3], hi[3], extent = 0.;
+        double lo[3], hi[3];
+        extent = 0.;
         for (unsigned int d = 0; d < 3; ++d)
           {
             lo[d] =
@@ -262,18 +267,26 @@ namespace YarnImpact
       double ns[3]   = {0., 0., 0.};
       bool have_area = false;
 
-      // The closest face whose normal opposes the node's, among those it
-      // penetrates by at most d_max; the first in face order on a tie.
-      Projection best, trial;
-      double best_depth = std::numeric_limits<double>::max();
-      int best_face     = -1;
+      // The faces whose normal opposes the node's and that it penetrates
+      // by at most d_max, in face order (the deepest dropped beyond 8).
+      struct Touched
+      {
+        Projection projection;
+        double depth;
+        unsigned int face;
+      };
+      Touched touched[8];
+      unsigned int n_touched = 0;
+      double extent          = 0.;
       for (unsigned int i = slot.begin; i < slot.end; ++i)
         {
           const unsigned int f = slot_faces[i];
           const double *c[4];
           for (unsigned int a = 0; a < 4; ++a)
             c[a] = &position[3 * surface.faces[f][a]];
-          if (!may_touch(c, p, parameters.detection_depth) ||
+          double face_extent;
+          Projection trial;
+          if (!may_touch(c, p, parameters.detection_depth, face_extent) ||
               !project(c, p, trial))
             continue;
           if (!have_area)
@@ -286,20 +299,169 @@ namespace YarnImpact
           if (!(dot(trial.n, ns) < 0.))
             continue;
           const double depth = -trial.gap;
-          if (depth > 0. && depth <= parameters.detection_depth &&
-              depth < best_depth)
+          if (!(depth > 0. && depth <= parameters.detection_depth))
+            continue;
+          extent         = std::max(extent, face_extent);
+          unsigned int k = n_touched;
+          if (n_touched == 8)
             {
-              best       = trial;
-              best_depth = depth;
-              best_face  = f;
+              k = 0;
+              for (unsigned int j = 1; j < 8; ++j)
+                if (touched[j].depth > touched[k].depth)
+                  k = j;
+              if (!(depth < touched[k].depth))
+                continue;
             }
+          else
+            ++n_touched;
+          touched[k] = {trial, depth, f};
         }
       slot.energy = 0.;
-      if (best_face < 0)
+      if (n_touched == 0)
         {
           slot.touching = false;
+          slot.n_tied   = 0;
           return;
         }
+      // The closest face, the first in face order on an exact tie.
+      unsigned int closest = 0;
+      for (unsigned int j = 1; j < n_touched; ++j)
+        if (touched[j].depth < touched[closest].depth ||
+            (touched[j].depth == touched[closest].depth &&
+             touched[j].face < touched[closest].face))
+          closest = j;
+      // A tie: faces within 1e-10 of the faces' size of the closest
+      // depth. The node then lies over their common edge or vertex to
+      // within the projection's own tolerance (1e-9 of a face outside
+      // it), so that the choice among them is round-off's, as at a node
+      // on a mirror plane over a face and its image, whose depths differ
+      // by about 1e-18 m (1e-15 m at most, the mirrored vertices' rounding)
+      // against the tolerance's 1e-14 m on the patch's 0.1 mm faces.
+      const double tie = touched[closest].depth + 1e-10 * extent;
+      unsigned int tied[max_tied], n_tied = 0;
+      for (unsigned int j = 0; j < n_touched; ++j)
+        if (touched[j].depth <= tie)
+          {
+            // Ascending by face, the smallest faces kept beyond max_tied.
+            unsigned int k = std::min(n_tied, max_tied);
+            while (k > 0 && touched[tied[k - 1]].face > touched[j].face)
+              {
+                if (k < max_tied)
+                  tied[k] = tied[k - 1];
+                --k;
+              }
+            if (k < max_tied)
+              tied[k] = j;
+            n_tied = std::min(n_tied + 1, max_tied);
+          }
+      // The law of the node's spring, damping and mass times @p share.
+      const auto constants = [&](const double share) {
+        Contact::ContactConstants c;
+        c.stiffness = share * slot.stiffness;
+        c.damping   = parameters.damping_ratio > 0.
+                        ? Contact::critical_damping(parameters.damping_ratio,
+                                                  share * surface.mass[s],
+                                                  c.stiffness)
+                        : 0.;
+        c.tangential_stiffness =
+          parameters.tangential_stiffness_ratio * c.stiffness;
+        c.friction = parameters.friction;
+        c.mass     = share * surface.mass[s];
+        return c;
+      };
+      // The force of @p law on the node at the depth @p depth [m] below
+      // @p face's point @p projection, with the tangential @p history [m],
+      // and the opposite force on the face's nodes by their shape
+      // functions; the damping and slip work [J] added to @p work.
+      const auto press = [&](const Law &law,
+                             const unsigned int face,
+                             const Projection &projection,
+                             const double depth,
+                             double *history,
+                             double &work) {
+        const auto &corners = surface.faces[face];
+        double v_rel[3];
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            v_rel[d] = velocity[3 * s + d];
+            for (unsigned int a = 0; a < 4; ++a)
+              v_rel[d] -= projection.N[a] * velocity[3 * corners[a] + d];
+          }
+        double f[3];
+        Contact::contact_force(law,
+                               depth,
+                               projection.n,
+                               v_rel,
+                               dt,
+                               history,
+                               f,
+                               work);
+        if (is_owned[s])
+          for (unsigned int d = 0; d < 3; ++d)
+            force[3 * local_index[s] + d] += f[d];
+        for (unsigned int a = 0; a < 4; ++a)
+          if (is_owned[corners[a]])
+            for (unsigned int d = 0; d < 3; ++d)
+              force[3 * local_index[corners[a]] + d] -= projection.N[a] * f[d];
+      };
+      if (n_tied > 1)
+        {
+          // Each tied face takes 1/t of the node's spring, damping and
+          // mass, with its own depth, normal, projection and history: the
+          // sum over the faces does not depend on their order, and a
+          // node on a mirror plane over t faces and images gets t times
+          // the force that a model of 1/t of the patch, which meshes one
+          // of them, gives its share (doc/fabric.md section 10).
+          const double share = 1. / n_tied;
+          if (!slot.touching)
+            {
+              std::fill(slot.history, slot.history + 3, 0.);
+              slot.n_tied  = 0;
+              double start = 0.;
+              for (unsigned int k = 0; k < n_tied; ++k)
+                start += dot(ns, touched[tied[k]].projection.n);
+              slot.stiffness = -0.5 * parameters.penalty * share * start;
+            }
+          slot.touching = true;
+          double history[max_tied][3], mean[3] = {0., 0., 0.}, work = 0.;
+          for (unsigned int k = 0; k < n_tied; ++k)
+            {
+              const Touched &t = touched[tied[k]];
+              // Its own history if it was tied before, else the node's.
+              const double *old = slot.history;
+              for (unsigned int j = 0; j < slot.n_tied; ++j)
+                if (slot.tied_face[j] == t.face)
+                  old = slot.tied_history[j];
+              std::copy(old, old + 3, history[k]);
+              const Law law(constants(share));
+              press(law, t.face, t.projection, t.depth, history[k], work);
+              if (is_owned[s])
+                slot.energy += law.energy(t.depth, history[k]);
+              for (unsigned int d = 0; d < 3; ++d)
+                mean[d] += share * history[k][d];
+            }
+          if (is_owned[s])
+            node_dissipated[s] += work;
+          slot.n_tied = n_tied;
+          for (unsigned int k = 0; k < n_tied; ++k)
+            {
+              slot.tied_face[k] = touched[tied[k]].face;
+              std::copy(history[k], history[k] + 3, slot.tied_history[k]);
+            }
+          std::copy(mean, mean + 3, slot.history);
+          return;
+        }
+      const Projection &best       = touched[closest].projection;
+      const double best_depth      = touched[closest].depth;
+      const unsigned int best_face = touched[closest].face;
+      // After a tie, the face that stays keeps its own history.
+      for (unsigned int k = 0; k < slot.n_tied; ++k)
+        if (slot.tied_face[k] == best_face)
+          std::copy(slot.tied_history[k],
+                    slot.tied_history[k] + 3,
+                    slot.history);
+      slot.n_tied = 0;
+
       // The node's area facing the face, -A_s . n, when the contact
       // starts: a node on a yarn's edge carries the share of its faces
       // that press, not of those beside. Kept while the contact lasts, so
@@ -313,48 +475,14 @@ namespace YarnImpact
           slot.stiffness = -0.5 * parameters.penalty * dot(ns, best.n);
         }
       slot.touching = true;
-
-      const auto &face = surface.faces[best_face];
-      double v_rel[3];
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          v_rel[d] = velocity[3 * s + d];
-          for (unsigned int a = 0; a < 4; ++a)
-            v_rel[d] -= best.N[a] * velocity[3 * face[a] + d];
-        }
-      Contact::ContactConstants constants;
-      constants.stiffness = slot.stiffness;
-      constants.damping =
-        parameters.damping_ratio > 0.
-          ? Contact::critical_damping(parameters.damping_ratio,
-                                      surface.mass[s],
-                                      constants.stiffness)
-          : 0.;
-      constants.tangential_stiffness =
-        parameters.tangential_stiffness_ratio * constants.stiffness;
-      constants.friction = parameters.friction;
-      constants.mass     = surface.mass[s];
-      const Law law(constants);
-      double f[3], work = 0.;
-      Contact::contact_force(law,
-                             best_depth,
-                             best.n,
-                             v_rel,
-                             dt,
-                             slot.history,
-                             f,
-                             work);
+      const Law law(constants(1.));
+      double work = 0.;
+      press(law, best_face, best, best_depth, slot.history, work);
       if (is_owned[s])
         {
-          for (unsigned int d = 0; d < 3; ++d)
-            force[3 * local_index[s] + d] += f[d];
           node_dissipated[s] += work;
           slot.energy = law.energy(best_depth, slot.history);
         }
-      for (unsigned int a = 0; a < 4; ++a)
-        if (is_owned[face[a]])
-          for (unsigned int d = 0; d < 3; ++d)
-            force[3 * local_index[face[a]] + d] -= best.N[a] * f[d];
     }
 
 
@@ -434,35 +562,6 @@ namespace YarnImpact
       for (const unsigned int node : owned)
         sum.add(0, node_dissipated[node]);
       return sum.sum(communicator)[0];
-    }
-
-
-    void
-    YarnContact::save(Checkpoint::Writer &out) const
-    {
-      out.tag("yarn contact");
-      std::vector<double> touching, work;
-      append_touching(touching);
-      for (const unsigned int node : owned)
-        work.push_back(node_dissipated[node]);
-      out.put(touching);
-      out.put(work);
-    }
-
-
-    void
-    YarnContact::load(Checkpoint::Reader &in)
-    {
-      in.tag("yarn contact");
-      std::vector<double> touching, work(owned.size());
-      in.get(touching);
-      in.get_same_size(work, "dissipated work of the yarn contact's nodes");
-      for (unsigned int k = 0; k < owned.size(); ++k)
-        node_dissipated[owned[k]] = work[k];
-      loaded = touching;
-      slots.clear();
-      slot_faces.clear();
-      built = false;
     }
 
 

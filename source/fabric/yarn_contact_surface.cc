@@ -147,7 +147,8 @@ namespace YarnImpact
                      MPI_DOUBLE,
                      communicator);
       std::map<std::pair<unsigned int, unsigned int>, const double *> old;
-      for (unsigned int i = 0; i < all.size(); i += 6)
+      for (unsigned int i = 0; i < all.size();
+           i += 7 + 4 * static_cast<unsigned int>(all[i + 6]))
         old[{static_cast<unsigned int>(all[i]),
              static_cast<unsigned int>(all[i + 1])}] = &all[i + 2];
 
@@ -243,6 +244,14 @@ namespace YarnImpact
                       slot.touching = true;
                       std::copy(o->second, o->second + 3, slot.history);
                       slot.stiffness = o->second[3];
+                      slot.n_tied    = static_cast<unsigned int>(o->second[4]);
+                      for (unsigned int k = 0; k < slot.n_tied; ++k)
+                        {
+                          const double *tied = o->second + 5 + 4 * k;
+                          slot.tied_face[k] =
+                            static_cast<unsigned int>(tied[0]);
+                          std::copy(tied + 1, tied + 4, slot.tied_history[k]);
+                        }
                     }
                   slots.push_back(slot);
                 }
@@ -260,13 +269,51 @@ namespace YarnImpact
     {
       for (const Slot &slot : slots)
         if (slot.touching && is_owned[slot.node])
-          out.insert(out.end(),
-                     {double(slot.node),
-                      double(slot.yarn),
-                      slot.history[0],
-                      slot.history[1],
-                      slot.history[2],
-                      slot.stiffness});
+          {
+            out.insert(out.end(),
+                       {double(slot.node),
+                        double(slot.yarn),
+                        slot.history[0],
+                        slot.history[1],
+                        slot.history[2],
+                        slot.stiffness,
+                        double(slot.n_tied)});
+            for (unsigned int k = 0; k < slot.n_tied; ++k)
+              out.insert(out.end(),
+                         {double(slot.tied_face[k]),
+                          slot.tied_history[k][0],
+                          slot.tied_history[k][1],
+                          slot.tied_history[k][2]});
+          }
+    }
+
+
+    void
+    YarnContact::save(Checkpoint::Writer &out) const
+    {
+      out.tag("yarn contact");
+      std::vector<double> touching, work;
+      append_touching(touching);
+      for (const unsigned int node : owned)
+        work.push_back(node_dissipated[node]);
+      out.put(touching);
+      out.put(work);
+    }
+
+
+    void
+    YarnContact::load(Checkpoint::Reader &in)
+    {
+      in.tag("yarn contact");
+      std::vector<double> touching, work(owned.size());
+      in.get(touching);
+      in.get_same_size(work, "dissipated work of the yarn contact's nodes");
+      for (unsigned int k = 0; k < owned.size(); ++k)
+        node_dissipated[owned[k]] = work[k];
+      loaded = touching;
+      slots.clear();
+      slot_faces.clear();
+      built = false;
     }
   } // namespace Fabric
 } // namespace YarnImpact

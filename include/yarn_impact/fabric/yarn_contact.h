@@ -111,8 +111,13 @@ namespace YarnImpact
      * normal stiffness p A_s / 2 (A_s the node's area facing the face,
      * fixed when the contact starts) on the node and the opposite force on
      * the face's nodes by their shape functions at the projection, so
-     * that momentum is conserved to round-off. Tangential history per contact
-     * (node, other yarn). Candidates from bins, rebuilt by a displacement
+     * that momentum is conserved to round-off. A node over an edge or a
+     * vertex whose faces it penetrates equally, to within 1e-10 of the
+     * faces' size (a tie), is shared equally among them: each gets 1/t of
+     * its stiffness, damping and mass with its own depth, normal and
+     * tangential history, whatever the faces' order (doc/fabric.md
+     * section 10). Tangential history per contact (node, other yarn), and
+     * per tied face. Candidates from bins, rebuilt by a displacement
      * criterion that misses no contact.
      *
      * MPI: the surface and its topology are known to every rank; each
@@ -196,7 +201,8 @@ namespace YarnImpact
 
       /** Write the contact's state to a checkpoint: the touching
        * contacts whose node this rank owns (node, other yarn, tangential
-       * history [m], normal stiffness [N/m]) and each owned node's
+       * history [m], normal stiffness [N/m], tied faces and their
+       * histories [m]) and each owned node's
        * dissipated work [J]. The candidate lists are not written: they are
        * built again after load(), and longer or shorter lists give the
        * same forces. */
@@ -223,11 +229,21 @@ namespace YarnImpact
         double stiffness = 0.;
         /** Energy stored at the last evaluation [J]. */
         double energy = 0.;
+        /** The tied faces of the last evaluation (none: one face or no
+         * contact), ascending, and each one's tangential history [m]. */
+        unsigned int n_tied       = 0;
+        unsigned int tied_face[4] = {0, 0, 0, 0};
+        double tied_history[4][3] = {};
       };
 
+      /** The most faces a tie shares the node among: the faces about a
+       * vertex of a quadrilateral surface. */
+      static constexpr unsigned int max_tied = 4;
+
       /** Append the touching contacts of the owned slave nodes to @p out,
-       * 6 doubles each (node, yarn, tangential history, stiffness): the
-       * record a checkpoint and a rebuild's history hand-over share. */
+       * 7 + 4 t doubles each (node, yarn, tangential history, stiffness,
+       * t tied faces, each face and its history): the record a checkpoint
+       * and a rebuild's history hand-over share. */
       void
       append_touching(std::vector<double> &out) const;
 
