@@ -166,10 +166,9 @@ done
 add dem_verification quick "$CODE tests/dem" "${demx# }" "true$demver"
 
 # ---- full: the long cases (minutes to hours each on 2 cores) -----------
-# The README's default case: the paper's study in one run (FE, DEM and
-# hybrid).
+# The README's default case: the paper's study in one run (FE and DEM).
 add default full "$CODE" \
-  "fe=history:results/default/history_fe.csv dem=history:results/default/history_dem.csv hybrid=history:results/default/history_hybrid.csv consistency:$out/default.log" \
+  "fe=history:results/default/history_fe.csv dem=history:results/default/history_dem.csv consistency:$out/default.log" \
   "bash scripts/run_default.sh"
 # The DEM references of doc/validation.md section 6 and doc/identification.md
 # section 5 (stored as doc/figures/history_dem_km2_*.csv).
