@@ -268,14 +268,15 @@ namespace YarnImpact
       bool have_area = false;
 
       // The faces whose normal opposes the node's and that it penetrates
-      // by at most d_max, in face order (the deepest dropped beyond 8).
+      // by at most d_max, in face order (the deepest dropped beyond
+      // max_touched).
       struct Touched
       {
         Projection projection;
         double depth;
         unsigned int face;
       };
-      Touched touched[8];
+      Touched touched[max_touched];
       unsigned int n_touched = 0;
       double extent          = 0.;
       for (unsigned int i = slot.begin; i < slot.end; ++i)
@@ -303,10 +304,10 @@ namespace YarnImpact
             continue;
           extent         = std::max(extent, face_extent);
           unsigned int k = n_touched;
-          if (n_touched == 8)
+          if (n_touched == max_touched)
             {
               k = 0;
-              for (unsigned int j = 1; j < 8; ++j)
+              for (unsigned int j = 1; j < max_touched; ++j)
                 if (touched[j].depth > touched[k].depth)
                   k = j;
               if (!(depth < touched[k].depth))
@@ -338,22 +339,18 @@ namespace YarnImpact
       // by about 1e-18 m (1e-15 m at most, the mirrored vertices' rounding)
       // against the tolerance's 1e-14 m on the patch's 0.1 mm faces.
       const double tie = touched[closest].depth + 1e-10 * extent;
-      unsigned int tied[max_tied], n_tied = 0;
+      // Ascending by face (an insertion), the smallest faces kept beyond
+      // max_tied.
+      unsigned int tied[max_touched], n_tied = 0;
       for (unsigned int j = 0; j < n_touched; ++j)
         if (touched[j].depth <= tie)
           {
-            // Ascending by face, the smallest faces kept beyond max_tied.
-            unsigned int k = std::min(n_tied, max_tied);
-            while (k > 0 && touched[tied[k - 1]].face > touched[j].face)
-              {
-                if (k < max_tied)
-                  tied[k] = tied[k - 1];
-                --k;
-              }
-            if (k < max_tied)
-              tied[k] = j;
-            n_tied = std::min(n_tied + 1, max_tied);
+            unsigned int k = n_tied++;
+            for (; k > 0 && touched[tied[k - 1]].face > touched[j].face; --k)
+              tied[k] = tied[k - 1];
+            tied[k] = j;
           }
+      n_tied = std::min(n_tied, max_tied);
       // The law of the node's spring, damping and mass times @p share.
       const auto constants = [&](const double share) {
         Contact::ContactConstants c;

@@ -240,6 +240,10 @@ namespace YarnImpact
        * vertex of a quadrilateral surface. */
       static constexpr unsigned int max_tied = 4;
 
+      /** The most faces a node's evaluation keeps among those it
+       * penetrates (the deepest dropped beyond it). */
+      static constexpr unsigned int max_touched = 8;
+
       /** Append the touching contacts of the owned slave nodes to @p out,
        * 7 + 4 t doubles each (node, yarn, tangential history, stiffness,
        * t tied faces, each face and its history): the record a checkpoint
