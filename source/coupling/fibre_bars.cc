@@ -2,6 +2,8 @@
 // each fibre a chain of bars between the FE part's node layers, axial
 // unknowns of its own, the continuum's transverse motion.
 
+#include <yarn_impact/contact/projectile_contact.h>
+#include <yarn_impact/core/projectile.h>
 #include <yarn_impact/coupling/fibre_bars.h>
 #include <yarn_impact/coupling/hybrid_parts.h>
 #include <yarn_impact/fe/fe_model.h>
@@ -111,13 +113,16 @@ namespace YarnImpact
                     n_layers,
                     std::min(yarn.thickness_semi_axis, yarn.width_semi_axis),
                     communicator);
-      node_state.assign(3 * n_layers * n_vertices, 0.);
+      node_state.assign(node_stride * n_layers * n_vertices, 0.);
       set_up_projection();
       node_force.assign(2 * n_layers * n_vertices, 0.);
       layer_displacement.assign(2 * n_layers, 0.);
       fibre_record.assign(std::size_t(n_fibres) * record_size(), 0.);
       layer_axial.assign(std::size_t(n_fibres) * n_layers, 0.);
       fibre_dissipated.assign(n_fibres, 0.);
+      fibre_contact_dissipated.assign(n_fibres, 0.);
+      contact_history.assign(3 * n_all, 0.);
+      touching.assign(n_all, 0);
       axial_tension.assign(n_nodes, 0.);
 
       // Gershgorin: omega^2 <= 2 sum of the adjacent bars' stiffness over
@@ -278,8 +283,10 @@ namespace YarnImpact
     }
 
 
-    void
+    double
     FibreBars::compute_forces(ImpactModel &fe_model,
+                              const Projectile &projectile,
+                              const double dt,
                               const MPI_Comm communicator)
     {
       const FE::CouplingView fe = FE::coupling_view(fe_model);
@@ -289,10 +296,14 @@ namespace YarnImpact
       std::fill(node_state.begin(), node_state.end(), 0.);
       for (const auto &[c, dofs] : owned_nodes)
         {
+          double *const state = &node_state[node_stride * c];
           for (unsigned int d = 0; d < 2; ++d)
-            node_state[3 * c + d] = fe.displacement[dofs[1 + d]];
-          node_state[3 * c + 2] = fe.force[dofs[0]];
-          fe.force[dofs[0]]     = 0.;
+            {
+              state[d]     = fe.displacement[dofs[1 + d]];
+              state[3 + d] = fe.velocity[dofs[1 + d]];
+            }
+          state[2]          = fe.force[dofs[0]];
+          fe.force[dofs[0]] = 0.;
         }
       Utilities::MPI::sum(node_state, communicator, node_state);
 
@@ -308,7 +319,8 @@ namespace YarnImpact
                 double s = 0.;
                 for (unsigned int v = 0; v < 4; ++v)
                   s +=
-                    value[v] * node_state[3 * (k * n_vertices + vertex[v]) + d];
+                    value[v] *
+                    node_state[node_stride * (k * n_vertices + vertex[v]) + d];
                 layer_displacement[2 * k + d] = s;
               }
           double *const record = &fibre_record[std::size_t(f) * n_record];
@@ -383,15 +395,25 @@ namespace YarnImpact
             fibre_force[j] = q[j] - q[j - 1];
           fibre_force[n_nodes - 1] = -q[n_nodes - 2];
           // The FE part's axial forces to the fibre, P^T f_x, layer by
-          // layer.
+          // layer; summed in a register, in the order of the vertices (the
+          // compiler cannot: force may alias the projection).
           for (unsigned int k = 0; k < n_layers; ++k)
-            for (unsigned int v = 0; v < n_vertices; ++v)
-              {
-                const double fx = node_state[3 * (k * n_vertices + v) + 2];
-                if (fx != 0.)
-                  force[index(f, k * bars_per_cell)] +=
-                    projection[std::size_t(v) * n_fibres + f] * fx;
-              }
+            {
+              const double *const fx_k =
+                &node_state[node_stride * std::size_t(k) * n_vertices + 2];
+              double sum = fibre_force[k * bars_per_cell];
+              for (unsigned int v = 0; v < n_vertices; ++v)
+                if (fx_k[node_stride * v] != 0.)
+                  sum += projection[std::size_t(v) * n_fibres + f] *
+                         fx_k[node_stride * v];
+              fibre_force[k * bars_per_cell] = sum;
+            }
+          // The projectile on the fibre's bar nodes.
+          double contact_record[2] = {0., 0.};
+          if (contact_radius > 0.)
+            projectile_contact(f, projectile, dt, contact_record);
+          record[n_record - 3] = contact_record[0];
+          record[n_record - 2] = contact_record[1];
           // What the other ranks need: the overlap's ties take every
           // fibre's nodes there.
           for (unsigned int j = 0; j < n_overlap_nodes; ++j)
@@ -406,7 +428,7 @@ namespace YarnImpact
 
       // The bars' transverse forces on the FE nodes, summed in fibre order.
       std::fill(node_force.begin(), node_force.end(), 0.);
-      double n_breaking = 0.;
+      double n_breaking = 0., reaction = 0., stored = 0.;
       for (unsigned int f = 0; f < n_fibres; ++f)
         {
           const double *const record = &fibre_record[std::size_t(f) * n_record];
@@ -425,13 +447,125 @@ namespace YarnImpact
                   record[2 * n_layers + n_overlap_nodes + j];
               }
           n_breaking += record[n_record - 1];
+          reaction += record[n_record - 3];
+          stored += record[n_record - 2];
         }
+      contact_stored = stored;
       for (const auto &[c, dofs] : owned_nodes)
         for (unsigned int d = 0; d < 2; ++d)
           fe.force[dofs[1 + d]] += node_force[2 * c + d];
       // Every rank knows every broken bar.
       if (n_breaking > 0.)
         gather_fibres(broken, n_nodes);
+      return reaction;
+    }
+
+
+    void
+    FibreBars::set_projectile_contact(
+      const Contact::LawType law,
+      const Contact::ContactConstants &constants,
+      const double radius)
+    {
+      contact_law       = law;
+      contact_constants = constants;
+      contact_radius    = radius;
+    }
+
+
+    void
+    FibreBars::projectile_contact(const unsigned int f,
+                                  const Projectile &projectile,
+                                  const double dt,
+                                  double *out)
+    {
+      const double yc       = projectile.axis_position();
+      const double vp       = projectile.velocity();
+      const double Rr       = projectile.radius() + contact_radius;
+      const double *const u = &displacement[index(f, 0)];
+      const auto &vertex    = fibre_vertices[f];
+      const auto &value     = fibre_values[f];
+      // The continuum's transverse velocity at the fibre, on layer k.
+      const auto layer_velocity = [&](const unsigned int k,
+                                      const unsigned int d) {
+        double s = 0.;
+        for (unsigned int v = 0; v < 4; ++v)
+          s += value[v] *
+               node_state[node_stride * (k * n_vertices + vertex[v]) + 3 + d];
+        return s;
+      };
+      Contact::with_contact_law(contact_law, [&](auto tag) {
+        using Law = typename decltype(tag)::type;
+        static_assert(Law::history_size <= 3,
+                      "a bar node keeps 3 doubles of projectile history");
+        const Law law(contact_constants);
+        // The clamped node (the last) is left out, as it is not kicked.
+        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+          {
+            const std::size_t i = index(f, j);
+            const double x      = node_x(j) + u[j];
+            // Most nodes are farther along x than the reach: one test.
+            if (std::abs(x) >= Rr)
+              {
+                touching[i] = 0;
+                continue;
+              }
+            double xi;
+            const unsigned int c = cell_of(j, xi);
+            double delta, n[3];
+            if (!Contact::projectile_overlap(
+                  x,
+                  fibre_y[f] + (1. - xi) * layer_displacement[2 * c] +
+                    xi * layer_displacement[2 * (c + 1)],
+                  yc,
+                  Rr,
+                  delta,
+                  n))
+              {
+                touching[i] = 0;
+                continue;
+              }
+            double *const history = &contact_history[3 * i];
+            // A new contact starts without tangential history.
+            if (!touching[i])
+              for (unsigned int k = 0; k < 3; ++k)
+                history[k] = 0.;
+            touching[i] = 1;
+            double v[3] = {velocity[i], 0., 0.};
+            for (unsigned int d = 0; d < 2; ++d)
+              v[1 + d] = (1. - xi) * layer_velocity(c, d) +
+                         xi * layer_velocity(c + 1, d);
+            double vr[3], fc[3], dissipated = 0.;
+            Contact::relative_to_projectile(v, vp, vr);
+            Contact::contact_force(law,
+                                   delta,
+                                   n,
+                                   vr,
+                                   dt,
+                                   history,
+                                   fc,
+                                   dissipated);
+            // Weighted as the node's mass: its fibre's weight and the mean
+            // of its bars' continuum weights (an end node: half its bar's).
+            double xj;
+            const double w = fibre_weight[f] * 0.5 *
+                             (cell_weight[cell_of(j, xj)] +
+                              (j > 0 ? cell_weight[cell_of(j - 1, xj)] : 0.));
+            force[i] += w * fc[0];
+            // The transverse part to the two layers, as the node's
+            // position is interpolated from them.
+            double *const layer_force =
+              &fibre_record[std::size_t(f) * record_size()];
+            for (unsigned int d = 0; d < 2; ++d)
+              {
+                layer_force[2 * c + d] += (1. - xi) * w * fc[1 + d];
+                layer_force[2 * (c + 1) + d] += xi * w * fc[1 + d];
+              }
+            out[0] -= w * fc[1];
+            out[1] += w * law.energy(delta, history);
+            fibre_contact_dissipated[f] += w * dissipated;
+          }
+      });
     }
 
 

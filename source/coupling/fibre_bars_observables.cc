@@ -61,7 +61,10 @@ namespace YarnImpact
     double
     FibreBars::dissipated_energy() const
     {
-      return sum_over_fibres(fibre_dissipated);
+      std::vector<double> fibre_energy(fibre_dissipated);
+      for (unsigned int f = fibre_begin; f < fibre_end; ++f)
+        fibre_energy[f] += fibre_contact_dissipated[f];
+      return sum_over_fibres(std::move(fibre_energy));
     }
 
 
@@ -188,6 +191,12 @@ namespace YarnImpact
       out.put(gathered(break_time, n_nodes));
       out.put(time);
       out.put(gathered(fibre_dissipated, 1));
+      out.put(gathered(fibre_contact_dissipated, 1));
+      std::vector<double> history = gathered(contact_history, 3 * n_nodes);
+      out.put(history);
+      std::vector<std::uint8_t> touched(touching);
+      gather_fibres(touched, n_nodes);
+      out.put(touched);
     }
 
 
@@ -203,13 +212,17 @@ namespace YarnImpact
       in.get_same_size(break_time, "fibre bars' break times");
       in.get(time);
       in.get_same_size(fibre_dissipated, "fibre bars' released energies");
+      in.get_same_size(fibre_contact_dissipated,
+                       "fibre bars' contact dissipation");
+      in.get_same_size(contact_history, "fibre bars' contact histories");
+      in.get_same_size(touching, "fibre bars' contact states");
     }
 
 
     std::size_t
     FibreBars::memory_consumption() const
     {
-      return displacement.size() * (6 * sizeof(double) + 1) +
+      return displacement.size() * (9 * sizeof(double) + 2) +
              (node_state.size() + node_force.size()) * sizeof(double) +
              (fibre_record.size() + layer_axial.size()) * sizeof(double) +
              n_fibres * (4 * sizeof(unsigned int) + 7 * sizeof(double)) +

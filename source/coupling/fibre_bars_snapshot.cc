@@ -37,7 +37,8 @@ namespace YarnImpact
                                       const unsigned int d) {
             double s = 0.;
             for (unsigned int v = 0; v < 4; ++v)
-              s += value[v] * node_state[3 * (k * n_vertices + vertex[v]) + d];
+              s += value[v] *
+                   node_state[node_stride * (k * n_vertices + vertex[v]) + d];
             return s;
           };
           for (unsigned int j = 0; j < n_nodes; ++j)

@@ -52,7 +52,10 @@ namespace YarnImpact
                        shared.yarn.failure,
                        quarter(),
                        communicator);
-              b.compute_forces(fe, communicator);
+              b.set_projectile_contact(dem.projectile_law,
+                                       dem.projectile_constants,
+                                       dem.sphere_radius);
+              b.compute_forces(fe, projectile, 0., communicator);
             };
             set_up_bars(bars, *fe_model);
             if (left_fe_model)
@@ -169,6 +172,7 @@ namespace YarnImpact
             o.kinetic_energy += factor * bars.kinetic_energy();
             o.elastic_energy += factor * bars.elastic_energy();
             o.dissipated_energy += factor * bars.dissipated_energy();
+            o.contact_energy += factor * bars.contact_energy();
             o.n_failed += std::lround(factor * bars.n_broken());
             if (left_fe_model)
               {
@@ -177,6 +181,7 @@ namespace YarnImpact
                 o.kinetic_energy += left_bars.kinetic_energy();
                 o.elastic_energy += left_bars.elastic_energy();
                 o.dissipated_energy += left_bars.dissipated_energy();
+                o.contact_energy += left_bars.contact_energy();
                 o.n_failed += left_bars.n_broken();
               }
             o.cut_through = o.cut_through || every_fibre_broken();

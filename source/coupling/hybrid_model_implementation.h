@@ -146,9 +146,11 @@ namespace YarnImpact
         {
           if (layout.fibre_bars)
             bars.set_continuum_axial(*fe_model);
-          const double f_fe = fe_model->compute_forces(projectile, dt);
+          double f_fe = fe_model->compute_forces(projectile, dt);
           if (layout.fibre_bars)
-            bars.compute_forces(*fe_model, communicator);
+            f_fe +=
+              symmetry() *
+              bars.compute_forces(*fe_model, projectile, dt, communicator);
           double f_left = 0.;
           if (left_fe_model)
             {
@@ -156,13 +158,17 @@ namespace YarnImpact
                 left_bars.set_continuum_axial(*left_fe_model);
               f_left = left_fe_model->compute_forces(projectile, dt);
               if (layout.fibre_bars)
-                left_bars.compute_forces(*left_fe_model, communicator);
+                f_left += left_bars.compute_forces(*left_fe_model,
+                                                   projectile,
+                                                   dt,
+                                                   communicator);
             }
           const double f_dem = dem_model->compute_forces(projectile, dt);
           // Before the cut, a touch means fibres the DEM part should carry
           // would wrap the nose in the continuum; after it (every fibre
-          // broken, which no later step undoes) the FE part's own penalty
-          // contact is the model there (doc/hybrid.md 3.1).
+          // broken, which no later step undoes) the FE part's contact (its
+          // surface's, or its fibre bars' nodes') is the model there
+          // (doc/hybrid.md section 1).
           if ((f_fe != 0. || f_left != 0.) && fe_touch_displacement < 0.)
             {
               if (!every_fibre_broken())
@@ -363,7 +369,9 @@ namespace YarnImpact
             s << "Hybrid contact: the projectile touched the FE part after "
                  "the yarn was cut, at a projectile displacement of "
               << std::setprecision(6) << fe_touch_displacement * 1e3
-              << " mm; the FE part's contact acted from then on\n";
+              << " mm; the FE part's contact"
+              << (layout.fibre_bars ? " (its fibre bars' nodes)" : "")
+              << " acted from then on\n";
           for (const Overlap *o : overlaps())
             {
               const char *which = (o == &nose   ? ""

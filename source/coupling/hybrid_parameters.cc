@@ -263,6 +263,10 @@ namespace YarnImpact
           p.fe.axial_modulus_from_fibres  = false;
           p.fe.charmetant.k_e             = 0.;
           p.fe.charmetant.resist_dilation = false;
+          // The projectile touches the fibres' bar nodes, not the
+          // continuum's surface: a push along x on the surface would go
+          // through P^T to whatever bars lie under it, broken ones too.
+          p.fe.projectile_contact = false;
         }
 
       // The DEM part at the clamp: the whole yarn's stations from x_c to

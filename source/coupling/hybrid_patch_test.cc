@@ -73,7 +73,7 @@ namespace YarnImpact
             fe_part->compute_forces(far, 0.);
             if (layout.fibre_bars)
               {
-                b->compute_forces(*fe_part, communicator);
+                b->compute_forces(*fe_part, far, 0., communicator);
                 // The own fibres' bar nodes outside the overlap but the
                 // clamped one.
                 for (unsigned int f = b->fibre_begin; f < b->fibre_end; ++f)

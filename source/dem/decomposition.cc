@@ -239,16 +239,28 @@ namespace YarnImpact
       {
         if (!chains.x_sym || chains.n_st <= 1)
           return;
-        double m = infinity;
+        double m           = infinity;
+        unsigned int s_min = 1;
         for (unsigned int s = 1; s < chains.n_st; ++s)
-          m = std::min(m, lo_x[s]);
+          if (lo_x[s] < m)
+            {
+              m     = lo_x[s];
+              s_min = s;
+            }
         if (!(m > 0.))
-          throw RunError("[dem] a sphere off the symmetry plane crossed "
-                         "x = 0 (it passed through its own mirror "
-                         "image): the motion under the projectile blew "
-                         "up, which no symmetry would survive; lower "
-                         "Time/Safety factor, or the contact stiffness "
-                         "ratios of subsection DEM");
+          {
+            // Which cross-section tells a fibre end freed at the plane
+            // (a few spacings) from a blow-up far from it.
+            std::ostringstream s;
+            s << "[dem] a sphere off the symmetry plane crossed x = 0 (it "
+                 "passed through its own mirror image; cross-section "
+              << s_min << ", " << s_min * chains.L0 * 1e3
+              << " mm from the plane at rest, reached x = " << m * 1e6
+              << " um): the motion under the projectile blew up, which no "
+                 "symmetry would survive; lower Time/Safety factor, or the "
+                 "contact stiffness ratios of subsection DEM";
+            throw RunError(s.str());
+          }
       }
 
 

@@ -192,6 +192,9 @@ namespace YarnImpact
             return chains.fibre_inverse_mass[f] *
                    chains.station_inverse_mass_factor[s];
           };
+          v.sphere_radius        = chains.radius;
+          v.projectile_law       = projectile_law;
+          v.projectile_constants = projectile_constants;
           return v;
         }
 

@@ -47,10 +47,14 @@ namespace YarnImpact
             << " along the modelled length";
       out << "), " << dof_handler.n_dofs() << " dofs, "
           << Utilities::MPI::n_mpi_processes(communicator)
-          << " MPI rank(s), cell kernel: " << cell_kernel_variant() << "\n"
-          << "[fe] contact penalty " << parameters.contact.penalty
-          << " Pa/m: stable step of a surface node on it "
-          << contact_time_step * 1e9 << " ns\n";
+          << " MPI rank(s), cell kernel: " << cell_kernel_variant() << "\n";
+      if (parameters.projectile_contact)
+        out << "[fe] contact penalty " << parameters.contact.penalty
+            << " Pa/m: stable step of a surface node on it "
+            << contact_time_step * 1e9 << " ns\n";
+      else
+        out << "[fe] no projectile contact on the surface (the coupling's "
+               "fibres touch the projectile)\n";
       if (parameters.extra_forces)
         out << parameters.extra_forces->report();
     }
@@ -459,7 +463,7 @@ namespace YarnImpact
                 fixed[d] ? 0. : 1. / lumped_mass.local_element(node[d]);
 
             const double node_area = area.local_element(node[0]);
-            if (node_area > 0. && !fixed[1])
+            if (node_area > 0. && !fixed[1] && parameters.projectile_contact)
               contact.add_node(node,
                                node_area,
                                lumped_mass.local_element(node[0]));

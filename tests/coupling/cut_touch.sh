@@ -1,18 +1,18 @@
 #!/bin/bash
 # Usage: cut_touch.sh YARN_IMPACT SOURCE_DIR
 # The hybrid yarn after its cut (doc/hybrid.md section 1): once every fibre
-# is broken, the projectile may touch the FE part, whose own penalty
-# contact then acts. A 5 mm yarn with fibre bars (DEM part a = 1.6 mm,
+# is broken, the projectile may touch the FE part, whose contact then acts
+# (with fibre bars: on the bar nodes, doc/hybrid.md section 3.4). A 5 mm yarn with fibre bars (DEM part a = 1.6 mm,
 # overlap 0.4 mm) struck at 600 m/s: the bar waves come back from the
 # clamps at 0.33 us, the bars break by the clamp and by the overlap, the
 # yarn is cut at 0.60 us, and the free halves, dragged around the nose,
-# meet it in the FE part at about 0.98 us (where the run stopped with
+# meet it in the FE part at about 1.0 us (where the run stopped with
 # exit 4 when any touch of the FE part stopped it). Physics and
 # consistency checks, no recorded numbers:
 # - the run reaches its end (exit 0), and its summary gives the first
 #   touch of the FE part at a projectile displacement past the one at
 #   the cut (the touch is tested only after the cut);
-# - the energy balance, the FE part's contact with the projectile
+# - the energy balance, the bar nodes' contact with the projectile
 #   included, within 0.05 % of the initial energy to the end (the run's
 #   own check): a contact force on the projectile without its penalty
 #   energy in the balance would break it;
@@ -60,7 +60,7 @@ print(f"cut at {t_cut} us (projectile at {u_cut:.4f} mm), first touch of "
 if not u_cut < u_touch < u_end:
     sys.exit("the touch is not between the cut and the end")
 END
-# Row 60 (1.2 us) lies after the touch (about 0.98 us).
+# Row 60 (1.2 us) lies after the touch (about 1.0 us).
 restart_same touch_prm 60 ranks1/history_hybrid.csv
 
 test_end "the hybrid's FE part touched after the cut: energy balance, restart"

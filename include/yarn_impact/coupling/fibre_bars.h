@@ -1,9 +1,12 @@
 #ifndef yarn_impact_coupling_fibre_bars_h
 #define yarn_impact_coupling_fibre_bars_h
 
+#include <yarn_impact/contact/contact_constants.h>
+#include <yarn_impact/contact/contact_law.h>
 #include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/parameters.h>
+#include <yarn_impact/core/projectile.h>
 #include <yarn_impact/coupling/hybrid_model.h>
 
 #include <deal.II/grid/tria.h>
@@ -108,14 +111,43 @@ namespace YarnImpact
        * The bars' forces at the present displacements: the axial ones on
        * the bar nodes (replacing the last), the transverse ones added to
        * the owned FE nodes' forces of @p fe_model, the FE nodes' axial
-       * forces moved to the bars through P^T (and zeroed there); breaks
-       * bars past the failure strain (collective: sums the FE
-       * displacements and axial forces of the node layers, gathers the
-       * fibres' forces on the layers and at the overlap's nodes). After the
-       * FE part's forces.
+       * forces moved to the bars through P^T (and zeroed there), and the
+       * contact of @p projectile with the bar nodes over the step @p dt [s]
+       * (set_projectile_contact()); breaks bars past the failure strain
+       * (collective: sums the FE displacements, velocities and axial
+       * forces of the node layers, gathers the fibres' forces on the
+       * layers and at the overlap's nodes). After the FE part's forces.
+       * @return the contact's force on the projectile along y, of the
+       * modelled bars, the same on every rank [N]
+       */
+      double
+      compute_forces(ImpactModel &fe_model,
+                     const Projectile &projectile,
+                     const double dt,
+                     const MPI_Comm communicator);
+
+      /**
+       * The projectile touches the bar nodes (doc/hybrid.md section 3.4):
+       * each node, a point of its fibre (its own axial position, the
+       * continuum's transverse one), touches it as a DEM sphere of radius
+       * @p radius [m] does, by the DEM's projectile law @p law with
+       * @p constants (those of a sphere), its force weighted as the node's
+       * mass, the axial part on the node, the transverse part on the
+       * continuum through the node's layers. Radius 0 (the default): no
+       * contact.
        */
       void
-      compute_forces(ImpactModel &fe_model, const MPI_Comm communicator);
+      set_projectile_contact(const Contact::LawType law,
+                             const Contact::ContactConstants &constants,
+                             const double radius);
+
+      /** Energy stored in the projectile's contacts with the bar nodes at
+       * the last compute_forces(), the same on every rank [J]. */
+      double
+      contact_energy() const
+      {
+        return contact_stored;
+      }
 
       /** Stable step of the bar chains alone, 2 / omega_max with the
        * Gershgorin bound on the weighted stiffness over the nodes'
@@ -133,7 +165,8 @@ namespace YarnImpact
       double
       elastic_energy() const;
 
-      /** Strain energy released by the bars broken so far [J]
+      /** Strain energy released by the bars broken so far and energy
+       * dissipated by the projectile's contacts with the bar nodes [J]
        * (collective). */
       double
       dissipated_energy() const;
@@ -238,17 +271,44 @@ namespace YarnImpact
       std::vector<double> fibre_record;
       /** Per fibre: its bars' displacements at the node layers [m]. */
       std::vector<double> layer_axial;
-      /** Per fibre: energy released by its broken bars [J]. */
-      std::vector<double> fibre_dissipated;
+      /** Per fibre: energy released by its broken bars, and dissipated by
+       * the projectile's contacts with its bar nodes [J]. */
+      std::vector<double> fibre_dissipated, fibre_contact_dissipated;
+      /** The projectile's contact with the bar nodes: law, constants, the
+       * nodes' radius (0: none) [m], each node's law history and whether
+       * it touched at the last step; the stored energy at the last
+       * compute_forces() [J]. */
+      Contact::LawType contact_law = Contact::LawType::cundall_strack;
+      Contact::ContactConstants contact_constants;
+      double contact_radius = 0.;
+      std::vector<double> contact_history;
+      std::vector<std::uint8_t> touching;
+      double contact_stored = 0.;
+      /** Doubles per FE node in node_state: transverse displacement (y,
+       * z), axial force, transverse velocity (y, z). */
+      static constexpr unsigned int node_stride = 5;
+
+      /** The projectile's contacts with the bar nodes of own fibre @p f
+       * over the step @p dt [s]: forces added (axial to the nodes,
+       * transverse to the fibre's layer forces in fibre_record), the
+       * force on the projectile along y and the stored energy added to
+       * @p out [N], [J]. */
+      void
+      projectile_contact(const unsigned int f,
+                         const Projectile &projectile,
+                         const double dt,
+                         double *out);
       /** One fibre's bars' lengths, then their axial tensions s e_x, per
        * bar [m], [N]. */
       std::vector<double> axial_tension;
 
-      /** Size of one fibre's record in fibre_record. */
+      /** Size of one fibre's record in fibre_record: its layer forces, its
+       * overlap nodes' forces and velocities, then its contact force on the
+       * projectile, its contact energy and its bars broken in the step. */
       unsigned int
       record_size() const
       {
-        return 2 * n_layers + 2 * n_overlap_nodes + 1;
+        return 2 * n_layers + 2 * n_overlap_nodes + 3;
       }
 
       /** Sum of one value per fibre (the own fibres' set, the others'

@@ -60,6 +60,11 @@ namespace YarnImpact
       /** The inverse mass the kick applies to that sphere's force
        * [1/kg]. */
       std::function<double(unsigned int s, unsigned int f)> inverse_mass;
+      /** The spheres' radius [m], and the law and constants of their
+       * contact with the projectile. */
+      double sphere_radius            = 0.;
+      Contact::LawType projectile_law = Contact::LawType::cundall_strack;
+      Contact::ContactConstants projectile_constants;
     };
 
     /** The coupling view of @p model, which must be a DEM impact model. */

@@ -214,6 +214,10 @@ namespace YarnImpact
        * are crushed as those of a failing FE yarn (doc/hybrid.md section
        * 3.4). */
       bool erode_crushed_cells = false;
+      /** Also set by a coupling: whether the projectile touches the yarn's
+       * surface nodes. Off for the hybrid's FE part under fibre bars,
+       * whose bar nodes touch it instead (doc/hybrid.md section 3.4). */
+      bool projectile_contact = true;
       /** Also set by a coupling: the part models the mirror image x -> -x
        * of the yarn it stands for (the FE part on x < 0 of a whole hybrid
        * yarn is built as the one on x > 0, doc/hybrid.md section 3.1), so
