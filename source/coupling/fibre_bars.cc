@@ -310,19 +310,10 @@ namespace YarnImpact
       const unsigned int n_record = record_size();
       for (unsigned int f = fibre_begin; f < fibre_end; ++f)
         {
-          const auto &vertex = fibre_vertices[f];
-          const auto &value  = fibre_values[f];
           // The fibre's transverse displacement at each layer.
           for (unsigned int k = 0; k < n_layers; ++k)
             for (unsigned int d = 0; d < 2; ++d)
-              {
-                double s = 0.;
-                for (unsigned int v = 0; v < 4; ++v)
-                  s +=
-                    value[v] *
-                    node_state[node_stride * (k * n_vertices + vertex[v]) + d];
-                layer_displacement[2 * k + d] = s;
-              }
+              layer_displacement[2 * k + d] = at_fibre(f, k, d);
           double *const record = &fibre_record[std::size_t(f) * n_record];
           double *const fibre_layer_force = record;
           std::fill(fibre_layer_force, fibre_layer_force + 2 * n_layers, 0.);
@@ -483,17 +474,6 @@ namespace YarnImpact
       const double vp       = projectile.velocity();
       const double Rr       = projectile.radius() + contact_radius;
       const double *const u = &displacement[index(f, 0)];
-      const auto &vertex    = fibre_vertices[f];
-      const auto &value     = fibre_values[f];
-      // The continuum's transverse velocity at the fibre, on layer k.
-      const auto layer_velocity = [&](const unsigned int k,
-                                      const unsigned int d) {
-        double s = 0.;
-        for (unsigned int v = 0; v < 4; ++v)
-          s += value[v] *
-               node_state[node_stride * (k * n_vertices + vertex[v]) + 3 + d];
-        return s;
-      };
       Contact::with_contact_law(contact_law, [&](auto tag) {
         using Law = typename decltype(tag)::type;
         static_assert(Law::history_size <= 3,
@@ -533,8 +513,8 @@ namespace YarnImpact
             touching[i] = 1;
             double v[3] = {velocity[i], 0., 0.};
             for (unsigned int d = 0; d < 2; ++d)
-              v[1 + d] = (1. - xi) * layer_velocity(c, d) +
-                         xi * layer_velocity(c + 1, d);
+              v[1 + d] = (1. - xi) * at_fibre(f, c, 3 + d) +
+                         xi * at_fibre(f, c + 1, 3 + d);
             double vr[3], fc[3], dissipated = 0.;
             Contact::relative_to_projectile(v, vp, vr);
             Contact::contact_force(law,

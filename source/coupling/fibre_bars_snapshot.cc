@@ -30,16 +30,10 @@ namespace YarnImpact
       std::int32_t first = 0;
       for (unsigned int f = fibre_begin; f < fibre_end; ++f)
         {
-          const auto &vertex = fibre_vertices[f];
-          const auto &value  = fibre_values[f];
           // The fibre's transverse displacement at a node layer.
           const auto transverse = [&](const unsigned int k,
                                       const unsigned int d) {
-            double s = 0.;
-            for (unsigned int v = 0; v < 4; ++v)
-              s += value[v] *
-                   node_state[node_stride * (k * n_vertices + vertex[v]) + d];
-            return s;
+            return at_fibre(f, k, d);
           };
           for (unsigned int j = 0; j < n_nodes; ++j)
             {

@@ -288,6 +288,23 @@ namespace YarnImpact
        * z), axial force, transverse velocity (y, z). */
       static constexpr unsigned int node_stride = 5;
 
+      /** Entry @p e of node_state (0, 1: the transverse displacement; 3,
+       * 4: the transverse velocity) interpolated at fibre @p f on node
+       * layer @p k, by the section's bilinear values there [m], [m/s]. */
+      double
+      at_fibre(const unsigned int f,
+               const unsigned int k,
+               const unsigned int e) const
+      {
+        const auto &vertex = fibre_vertices[f];
+        const auto &value  = fibre_values[f];
+        double s           = 0.;
+        for (unsigned int v = 0; v < 4; ++v)
+          s += value[v] *
+               node_state[node_stride * (k * n_vertices + vertex[v]) + e];
+        return s;
+      }
+
       /** The projectile's contacts with the bar nodes of own fibre @p f
        * over the step @p dt [s]: forces added (axial to the nodes,
        * transverse to the fibre's layer forces in fibre_record), the
