@@ -138,7 +138,6 @@ namespace YarnImpact
         o.n_damaged         = b.n_damaged;
         o.cut_through       = b.cut_through;
         o.momentum          = a.momentum + b.momentum + c.momentum + d.momentum;
-        o.extra_columns     = {o.momentum};
         if (clamp_model)
           {
             o.kinetic_energy += c.kinetic_energy;
@@ -186,6 +185,20 @@ namespace YarnImpact
               }
             o.cut_through = o.cut_through || every_fibre_broken();
           }
+        // Each part's energy balance: the DEM part(s) and the rest.
+        const auto energy = [](const Observables &x) {
+          return x.kinetic_energy + x.elastic_energy + x.contact_energy +
+                 x.dissipated_energy;
+        };
+        const double dem_energy = energy(b) + energy(c);
+        double       work       = 0.;
+        for (const Overlap *overlap : overlaps())
+          work += symmetry() * overlap->work;
+        o.extra_columns = {o.momentum,
+                           1e3 * (energy(o) - dem_energy),
+                           1e3 * dem_energy,
+                           1e3 * work,
+                           1e3 * fe_projectile_work};
         // The profile: the DEM's stations up to the middle of the overlap,
         // the FE's beyond (up to the middle of the clamp's overlap, and
         // the clamp part's stations after it).

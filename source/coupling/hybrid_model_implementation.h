@@ -112,11 +112,20 @@ namespace YarnImpact
         /** The yarn's momentum along the impact direction, all parts
          * together (Observables::momentum; the fibre bars move along x
          * only), which with the projectile's is conserved until a wave
-         * reaches a clamp [kg m/s]. */
+         * reaches a clamp [kg m/s]; then each part's energy balance
+         * (doc/hybrid.md 2.3): the energy of the FE part (with its fibre
+         * bars) and of the DEM part(s), each kinetic, elastic, contact
+         * and dissipated, the work done by the FE part on the DEM part(s)
+         * through the overlaps and the projectile's work on the FE part
+         * (its contact after the cut) [mJ]. */
         std::vector<std::string>
         extra_column_names() const override
         {
-          return {"yarn momentum [kg m/s]"};
+          return {"yarn momentum [kg m/s]",
+                  "FE part energy [mJ]",
+                  "DEM part energy [mJ]",
+                  "coupling work on the DEM part [mJ]",
+                  "projectile work on the FE part [mJ]"};
         }
 
         double
@@ -164,6 +173,12 @@ namespace YarnImpact
                                                    communicator);
             }
           const double f_dem = dem_model->compute_forces(projectile, dt);
+          // The FE part's force on the projectile does work on it at the
+          // step's mid velocity, averaged over the step's two ends as the
+          // kicks apply it (Verlet's trapezoid).
+          fe_projectile_work -= 0.5 * (fe_projectile_force + f_fe + f_left) *
+                                projectile.velocity() * dt;
+          fe_projectile_force = f_fe + f_left;
           // Before the cut, a touch means fibres the DEM part should carry
           // would wrap the nose in the continuum; after it (every fibre
           // broken, which no later step undoes) the FE part's contact (its
@@ -277,6 +292,8 @@ namespace YarnImpact
                 left_bars.save_state(out);
             }
           out.put(fe_touch_displacement);
+          out.put(fe_projectile_force);
+          out.put(fe_projectile_work);
         }
 
         void
@@ -301,6 +318,8 @@ namespace YarnImpact
                 left_bars.load_state(in);
             }
           in.get(fe_touch_displacement);
+          in.get(fe_projectile_force);
+          in.get(fe_projectile_work);
         }
 
         /** The DEM parts' broken trusses (part "dem", and "clamp" for the
@@ -443,6 +462,12 @@ namespace YarnImpact
          * acts without a check (broken fibres stay broken). Negative
          * while it has not touched. */
         double fe_touch_displacement = -1.;
+
+        /** The FE part's force on the projectile at the last step [N]
+         * and the projectile's work on the FE part since the start [J]
+         * (both of the whole yarn). */
+        double fe_projectile_force = 0.;
+        double fe_projectile_work  = 0.;
 
         /** Whether the yarn is cut: every fibre has a broken truss in the
          * DEM part or (under fibre bars) a broken bar (collective). */

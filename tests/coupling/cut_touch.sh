@@ -16,6 +16,10 @@
 #   included, within 0.05 % of the initial energy to the end (the run's
 #   own check): a contact force on the projectile without its penalty
 #   energy in the balance would break it;
+# - each part's energy balance (the FE part with its bars, the DEM part
+#   with the projectile; the history's per-part columns, doc/hybrid.md
+#   2.3) within 0.05 %, the two summing to the run's to 1e-6 %, and the
+#   projectile's work on the FE part positive after the touch;
 # - stopped by SIGTERM after the touch and continued with --restart: the
 #   same history, byte for byte (the touch is in the checkpoint).
 exe=$1
@@ -59,6 +63,35 @@ print(f"cut at {t_cut} us (projectile at {u_cut:.4f} mm), first touch of "
       f"the FE part at {u_touch:.4f} mm, end at {u_end:.4f} mm")
 if not u_cut < u_touch < u_end:
     sys.exit("the touch is not between the cut and the end")
+# Each part's energy balance (doc/hybrid.md 2.3), in % of the initial
+# energy: the two must sum to the run's balance (the columns are the
+# totals' terms, split) and each stay within the run's 0.05 %.
+r0 = rows[0]
+def value(r, k):
+    return float(r[k + " [mJ]"])
+e0 = sum(value(r0, k) for k in ("projectile kinetic energy",
+                                "FE part energy", "DEM part energy"))
+worst = [0., 0., 0.]
+for r in rows:
+    w_c = value(r, "coupling work on the DEM part")
+    w_p = value(r, "projectile work on the FE part")
+    fe = value(r, "FE part energy") - value(r0, "FE part energy") - w_p + w_c
+    dem = (value(r, "DEM part energy") - value(r0, "DEM part energy") +
+           value(r, "projectile kinetic energy") -
+           value(r0, "projectile kinetic energy") + w_p - w_c)
+    fe, dem = 100. * fe / e0, 100. * dem / e0
+    total = float(r["energy error [%]"])
+    worst = [max(worst[0], abs(fe)), max(worst[1], abs(dem)),
+             max(worst[2], abs(fe + dem - total))]
+print(f"largest energy error of the FE part {worst[0]:.4f} %, of the DEM "
+      f"part {worst[1]:.4f} %, their sum off the run's by {worst[2]:.1e} %; "
+      f"projectile work on the FE part {w_p:.4f} mJ")
+if worst[2] > 1e-6:
+    sys.exit("the parts' energy balances do not sum to the run's")
+if max(worst[:2]) > 0.05:
+    sys.exit("a part's energy balance is off by more than 0.05 %")
+if w_p <= 0.:
+    sys.exit("no work of the projectile on the FE part after the touch")
 END
 # Row 60 (1.2 us) lies after the touch (about 1.0 us).
 restart_same touch_prm 60 ranks1/history_hybrid.csv
