@@ -277,10 +277,14 @@ namespace YarnImpact
           fe_model->save_state(out);
           dem_model->save_state(out);
           out.put(nose.work);
+          out.put(nose.previous_node_multipliers);
+          out.put(nose.previous_bar_multipliers);
           if (clamp_model)
             {
               clamp_model->save_state(out);
               out.put(clamp.work);
+              out.put(clamp.previous_node_multipliers);
+              out.put(clamp.previous_bar_multipliers);
             }
           if (layout.fibre_bars)
             bars.save_state(out);
@@ -288,6 +292,8 @@ namespace YarnImpact
             {
               left_fe_model->save_state(out);
               out.put(left.work);
+              out.put(left.previous_node_multipliers);
+              out.put(left.previous_bar_multipliers);
               if (layout.fibre_bars)
                 left_bars.save_state(out);
             }
@@ -303,10 +309,14 @@ namespace YarnImpact
           fe_model->load_state(in);
           dem_model->load_state(in);
           in.get(nose.work);
+          in.get(nose.previous_node_multipliers);
+          in.get(nose.previous_bar_multipliers);
           if (clamp_model)
             {
               clamp_model->load_state(in);
               in.get(clamp.work);
+              in.get(clamp.previous_node_multipliers);
+              in.get(clamp.previous_bar_multipliers);
             }
           if (layout.fibre_bars)
             bars.load_state(in);
@@ -314,6 +324,8 @@ namespace YarnImpact
             {
               left_fe_model->load_state(in);
               in.get(left.work);
+              in.get(left.previous_node_multipliers);
+              in.get(left.previous_bar_multipliers);
               if (layout.fibre_bars)
                 left_bars.load_state(in);
             }

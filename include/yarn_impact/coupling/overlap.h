@@ -84,6 +84,12 @@ namespace YarnImpact
       /** Work done by the continuum on the particles (the multipliers'
        * power, summed), in the modelled part [J]. */
       double work = 0.;
+      /** The multipliers' generalised forces of the last step on the
+       * overlap's nodes (N^T lambda, 3 per node) and, under fibre bars,
+       * on each fibre's tied bar nodes (the x component, by fibre and
+       * node) [N]: the work over a step averages them with the step's
+       * own, as the kicks apply forces (doc/hybrid.md section 2.3). */
+      std::vector<double> previous_node_multipliers, previous_bar_multipliers;
       std::vector<double> node_force, particle_force, node_acceleration,
         particle_acceleration, multipliers;
       /** The overlap's node velocities [m/s], N^T lambda [N] and zeros,
