@@ -347,20 +347,29 @@ namespace YarnImpact
                 {
                   const double ex = h + u[j + 1] - u[j];
                   q[j]            = std::sqrt(ex * ex + t2);
-                  e[j]            = gone[j] ? 0. : q[j] * inverse_h - 1.;
                 }
+              // e still holds the last step's strains here.
               if (failure)
                 for (unsigned int j = j0; j < j1; ++j)
-                  if (e[j] > failure_strain)
+                  if (!gone[j] && q[j] * inverse_h - 1. > failure_strain)
                     {
-                      // Broken for good; its strain energy is released.
-                      const double d = e[j] * h;
-                      fibre_dissipated[f] += 0.5 * k_w * d * d;
+                      // Broken for good. It releases what the integrator
+                      // gave it: its energy at the last step plus the
+                      // work its last tension did over the first half
+                      // kick, 1/2 k h^2 eps_n (eps_n + (eps - eps_n)) =
+                      // 1/2 k h^2 eps_n eps (not 1/2 k (eps h)^2 at the
+                      // new strain, which overshoots the failure strain
+                      // by up to its own size in one step where broken
+                      // pieces recoil, and made energy).
+                      const double strain = q[j] * inverse_h - 1.;
+                      fibre_dissipated[f] +=
+                        std::max(0.5 * k_w * h * h * e[j] * strain, 0.);
                       gone[j]                 = 1;
-                      e[j]                    = 0.;
                       break_time[index(f, j)] = time;
                       n_breaking += 1.;
                     }
+              for (unsigned int j = j0; j < j1; ++j)
+                e[j] = gone[j] ? 0. : q[j] * inverse_h - 1.;
               // Four partial sums in a fixed order: the same on any rank.
               double s_sum[4] = {0., 0., 0., 0.};
               for (unsigned int j = j0; j < j1; ++j)
