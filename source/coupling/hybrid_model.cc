@@ -191,7 +191,7 @@ namespace YarnImpact
                  x.dissipated_energy;
         };
         const double dem_energy = energy(b) + energy(c);
-        double       work       = 0.;
+        double work             = 0.;
         for (const Overlap *overlap : overlaps())
           work += symmetry() * overlap->work;
         o.extra_columns = {o.momentum,

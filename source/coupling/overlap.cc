@@ -138,6 +138,7 @@ namespace YarnImpact
       node_acceleration.assign(3 * n_coupled, 0.);
       node_velocity.assign(3 * n_coupled, 0.);
       node_multipliers.assign(3 * n_coupled, 0.);
+      previous_node_multipliers.assign(3 * n_coupled, 0.);
       zero_node_force.assign(3 * n_coupled, 0.);
       particle_force.assign(3 * n_p, 0.);
       particle_acceleration.assign(3 * n_p, 0.);
@@ -212,7 +213,6 @@ namespace YarnImpact
       // alone would miss half the change, a bias of order
       // lambda^2 dt^2 / m that the light debris of broken fibres makes
       // large).
-      previous_node_multipliers.resize(node_multipliers.size(), 0.);
       double power = 0.;
       for (unsigned int k = 0; k < node_velocity.size(); ++k)
         power += 0.5 * (node_multipliers[k] + previous_node_multipliers[k]) *
@@ -256,6 +256,7 @@ namespace YarnImpact
       const unsigned int n_stations = station_end - station_begin;
       const double h_b              = layout.cell_length / bars->bars_per_cell;
       fibre_constraints.assign(n_fibres, ChainConstraint(n_tied));
+      previous_bar_multipliers.assign(std::size_t(n_fibres) * n_tied, 0.);
       for (unsigned int f = 0; f < n_fibres; ++f)
         {
           ChainConstraint &tie = fibre_constraints[f];
@@ -326,7 +327,6 @@ namespace YarnImpact
       const unsigned int n_tied     = bar_force.size();
       const unsigned int n_stations = station_end - station_begin;
       double power                  = 0.;
-      previous_bar_multipliers.resize(std::size_t(n_fibres) * n_tied, 0.);
       for (unsigned int f = 0; f < n_fibres; ++f)
         {
           for (unsigned int j = 0; j < n_tied; ++j)
