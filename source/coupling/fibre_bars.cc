@@ -56,8 +56,15 @@ namespace YarnImpact
       cell_weight.assign(layout.fe_cells, 1.);
       for (unsigned int k = 0; k < layout.overlap_cells; ++k)
         cell_weight[k] = 1. - layout.particle_weight(k);
+      // With a DEM part at the clamp the bars end in its overlap, free,
+      // weighted there as the FE part is.
+      if (layout.clamp_cells > 0)
+        for (unsigned int k = 0; k < layout.overlap_cells; ++k)
+          cell_weight[layout.fe_cells - layout.overlap_cells + k] =
+            1. - layout.clamp_particle_weight(k);
 
       n_overlap_nodes = layout.overlap_cells * bars_per_cell + 1;
+      n_clamp_nodes   = layout.clamp_cells > 0 ? n_overlap_nodes : 0;
       // Contiguous fibre ranges, as even as they go.
       const unsigned int n_ranks =
         Utilities::MPI::n_mpi_processes(communicator);
@@ -129,10 +136,10 @@ namespace YarnImpact
       // the node's mass.
       double rate2 = 0.;
       for (unsigned int f = 0; f < n_fibres; ++f)
-        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+        for (unsigned int j = 0; j < n_free_nodes(); ++j)
           {
             double xi;
-            double k_sum = cell_weight[cell_of(j, xi)];
+            double k_sum = j + 1 < n_nodes ? cell_weight[cell_of(j, xi)] : 0.;
             if (j > 0)
               k_sum += cell_weight[cell_of(j - 1, xi)];
             k_sum *= fibre_weight[f];
@@ -265,8 +272,8 @@ namespace YarnImpact
     FibreBars::kick(const double dt)
     {
       for (unsigned int f = fibre_begin; f < fibre_end; ++f)
-        // The last node is held at the clamp.
-        for (unsigned int j = 0; j + 1 < n_nodes; ++j)
+        // The last node is held at the clamp, unless a DEM part is there.
+        for (unsigned int j = 0; j < n_free_nodes(); ++j)
           {
             const std::size_t i = index(f, j);
             velocity[i] += dt * force[i] * inverse_mass[i];
@@ -414,13 +421,14 @@ namespace YarnImpact
             projectile_contact(f, projectile, dt, contact_record);
           record[n_record - 3] = contact_record[0];
           record[n_record - 2] = contact_record[1];
-          // What the other ranks need: the overlap's ties take every
+          // What the other ranks need: the overlaps' ties take every
           // fibre's nodes there.
-          for (unsigned int j = 0; j < n_overlap_nodes; ++j)
+          const unsigned int n_tied = n_overlap_nodes + n_clamp_nodes;
+          for (unsigned int t = 0; t < n_tied; ++t)
             {
-              record[2 * n_layers + j] = force[index(f, j)];
-              record[2 * n_layers + n_overlap_nodes + j] =
-                velocity[index(f, j)];
+              record[2 * n_layers + t] = force[index(f, tied_node(t))];
+              record[2 * n_layers + n_tied + t] =
+                velocity[index(f, tied_node(t))];
             }
           record[n_record - 1] = n_breaking;
         }
@@ -440,12 +448,15 @@ namespace YarnImpact
                 node_force[2 * (k * n_vertices + vertex[v]) + d] +=
                   value[v] * record[2 * k + d];
           if (f < fibre_begin || f >= fibre_end)
-            for (unsigned int j = 0; j < n_overlap_nodes; ++j)
-              {
-                force[index(f, j)] = record[2 * n_layers + j];
-                velocity[index(f, j)] =
-                  record[2 * n_layers + n_overlap_nodes + j];
-              }
+            {
+              const unsigned int n_tied = n_overlap_nodes + n_clamp_nodes;
+              for (unsigned int t = 0; t < n_tied; ++t)
+                {
+                  force[index(f, tied_node(t))] = record[2 * n_layers + t];
+                  velocity[index(f, tied_node(t))] =
+                    record[2 * n_layers + n_tied + t];
+                }
+            }
           n_breaking += record[n_record - 1];
           reaction += record[n_record - 3];
           stored += record[n_record - 2];
@@ -488,7 +499,8 @@ namespace YarnImpact
         static_assert(Law::history_size <= 3,
                       "a bar node keeps 3 doubles of projectile history");
         const Law law(contact_constants);
-        // The clamped node (the last) is left out, as it is not kicked.
+        // The last node is left out: clamped, it is not kicked; tied to a
+        // DEM part at the clamp, the projectile must not reach it.
         for (unsigned int j = 0; j + 1 < n_nodes; ++j)
           {
             const std::size_t i = index(f, j);

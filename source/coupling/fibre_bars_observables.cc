@@ -131,44 +131,31 @@ namespace YarnImpact
 
 
     std::vector<double>
-    FibreBars::mean_strains() const
+    FibreBars::largest_strains() const
     {
-      // Each fibre's strains of the bars j - 1 and j at each layer's node
-      // j, where they exist and are intact (NaN elsewhere).
-      std::vector<double> layer_strain(
-        std::size_t(n_fibres) * 2 * n_layers,
-        std::numeric_limits<double>::quiet_NaN());
+      // Each fibre's largest strain of the intact bars j - 1 and j at each
+      // layer's node j (0 where both are broken), as the DEM's station
+      // profile takes the largest over its fibres.
+      std::vector<double> layer_strain(std::size_t(n_fibres) * n_layers, 0.);
       for (unsigned int f = fibre_begin; f < fibre_end; ++f)
         for (unsigned int k = 0; k < n_layers; ++k)
           {
             const unsigned int j = k * bars_per_cell;
-            for (unsigned int b = (j > 0 ? j - 1 : 0), q = (j > 0 ? 0 : 1);
+            double largest       = 0.;
+            for (unsigned int b = (j > 0 ? j - 1 : 0);
                  b <= j && b + 1 < n_nodes;
-                 ++b, ++q)
+                 ++b)
               if (!broken[index(f, b)])
-                layer_strain[(std::size_t(f) * n_layers + k) * 2 + q] =
-                  strain[index(f, b)];
+                largest = std::max(largest, strain[index(f, b)]);
+            layer_strain[std::size_t(f) * n_layers + k] = largest;
           }
-      gather_fibres(layer_strain, 2 * n_layers);
-      std::vector<double> mean(n_layers, 0.);
+      gather_fibres(layer_strain, n_layers);
+      std::vector<double> largest(n_layers, 0.);
       for (unsigned int k = 0; k < n_layers; ++k)
-        {
-          double sum = 0., count = 0.;
-          for (unsigned int f = 0; f < n_fibres; ++f)
-            for (unsigned int q = 0; q < 2; ++q)
-              {
-                const double e =
-                  layer_strain[(std::size_t(f) * n_layers + k) * 2 + q];
-                if (!std::isnan(e))
-                  {
-                    // A half fibre on z = 0 counts half (1 * e is e).
-                    sum += fibre_weight[f] * e;
-                    count += fibre_weight[f];
-                  }
-              }
-          mean[k] = count > 0. ? sum / count : 0.;
-        }
-      return mean;
+        for (unsigned int f = 0; f < n_fibres; ++f)
+          largest[k] =
+            std::max(largest[k], layer_strain[std::size_t(f) * n_layers + k]);
+      return largest;
     }
 
 

@@ -220,7 +220,7 @@ namespace YarnImpact
           if (k * layout.station_spacing < middle)
             append(b.profile, k);
         const std::vector<double> bar_strain =
-          layout.fibre_bars ? bars.mean_strains() : std::vector<double>();
+          layout.fibre_bars ? bars.largest_strains() : std::vector<double>();
         for (unsigned int k = 0; k < a.profile.size(); ++k)
           {
             const double x = layout.overlap_begin + k * layout.cell_length;

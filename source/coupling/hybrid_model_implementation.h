@@ -97,6 +97,10 @@ namespace YarnImpact
               clamp.station_begin = 0;
               clamp.station_end =
                 layout.overlap_cells * layout.cell_trusses + 1;
+              // Under fibre bars the clamp part's spheres are tied to the
+              // bars' last nodes in x, to the continuum in y and z.
+              if (layout.fibre_bars)
+                clamp.bars = &bars;
             }
         }
 
@@ -481,19 +485,24 @@ namespace YarnImpact
         double fe_projectile_force = 0.;
         double fe_projectile_work  = 0.;
 
-        /** Whether the yarn is cut: every fibre has a broken truss in the
+        /** Whether the yarn is cut: every fibre has a broken truss in a
          * DEM part or (under fibre bars) a broken bar (collective). */
         bool
         every_fibre_broken() const
         {
           const DEM::CouplingView dem = DEM::coupling_view(*dem_model);
           std::vector<double> broken(dem.n_fibres, 0.);
-          for (unsigned int s = dem.station_begin;
-               s < std::min(dem.station_end, dem.n_stations - 1);
-               ++s)
-            for (unsigned int f = 0; f < dem.n_fibres; ++f)
-              if (dem.broken[dem.local_index(s, f)])
-                broken[f] = 1.;
+          const auto mark = [&broken](const DEM::CouplingView &part) {
+            for (unsigned int s = part.station_begin;
+                 s < std::min(part.station_end, part.n_stations - 1);
+                 ++s)
+              for (unsigned int f = 0; f < part.n_fibres; ++f)
+                if (part.broken[part.local_index(s, f)])
+                  broken[f] = 1.;
+          };
+          mark(dem);
+          if (clamp_model)
+            mark(DEM::coupling_view(*clamp_model));
           dealii::Utilities::MPI::max(broken, communicator, broken);
           for (unsigned int f = 0; f < dem.n_fibres; ++f)
             if (broken[f] == 0. &&

@@ -65,8 +65,9 @@ namespace YarnImpact
         "fibre as its own chain of bars between the FE node layers for the "
         "axial motion, so that fibres slide along each other, carry their "
         "own bar waves to and from the clamp, and may break there "
-        "(doc/hybrid.md section 3.4); needs FE/Constitutive law = "
-        "Charmetant and Clamp DEM length = 0.");
+        "(doc/hybrid.md section 3.4); with a Clamp DEM length the bars end "
+        "in the clamp part's overlap, tied to its fibres; needs "
+        "FE/Constitutive law = Charmetant.");
       prm.declare_entry(
         "Fibre bars per FE cell",
         "0",
@@ -323,10 +324,6 @@ namespace YarnImpact
               "bars)");
       if (l.fibre_bars)
         {
-          require(l.clamp_cells == 0,
-                  "Hybrid/Clamp DEM length",
-                  "must be 0 with Hybrid/Far field = fibre bars (the bars "
-                  "hold each fibre at the clamp)");
           require(fe.law == FE::LawType::charmetant,
                   "FE/Constitutive law",
                   "must be Charmetant with Hybrid/Far field = fibre bars (the "

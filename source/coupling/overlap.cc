@@ -247,21 +247,23 @@ namespace YarnImpact
     Overlap::set_up_axial_ties(const HybridLayout &layout,
                                const DEM::CouplingView &dem)
     {
-      // The overlap's bar nodes are the bars' first ones; sphere (s, f) is
-      // tied to fibre f's bar nodes at its reference x, linearly between
-      // the two around it (on one node when the bars are the DEM's
-      // trusses).
+      // The overlap's bar nodes are the bars' first ones by the nose, their
+      // last ones at the clamp; sphere (s, f) is tied to fibre f's bar
+      // nodes at its reference x, linearly between the two around it (on
+      // one node when the bars are the DEM's trusses).
       const unsigned int n_tied =
         layout.overlap_cells * bars->bars_per_cell + 1;
       const unsigned int n_stations = station_end - station_begin;
       const double h_b              = layout.cell_length / bars->bars_per_cell;
+      bar_offset = std::lround((x_begin - bars->node_x(0)) / h_b);
+      AssertThrow(bar_offset + n_tied <= bars->n_nodes, ExcInternalError());
       fibre_constraints.assign(n_fibres, ChainConstraint(n_tied));
       previous_bar_multipliers.assign(std::size_t(n_fibres) * n_tied, 0.);
       for (unsigned int f = 0; f < n_fibres; ++f)
         {
           ChainConstraint &tie = fibre_constraints[f];
           for (unsigned int j = 0; j < n_tied; ++j)
-            tie.set_node_mass(j, bars->mass[bars->index(f, j)]);
+            tie.set_node_mass(j, bars->mass[bars->index(f, bar_offset + j)]);
           for (unsigned int q = 0; q < n_stations; ++q)
             {
               const unsigned int s = station_of(q);
@@ -331,7 +333,7 @@ namespace YarnImpact
         {
           for (unsigned int j = 0; j < n_tied; ++j)
             {
-              bar_force[j] = bars->force[bars->index(f, j)];
+              bar_force[j] = bars->force[bars->index(f, bar_offset + j)];
               gathered_bar_force[std::size_t(f) * n_tied + j] = bar_force[j];
             }
           for (unsigned int q = 0; q < n_stations; ++q)
@@ -345,7 +347,7 @@ namespace YarnImpact
                             sphere_multipliers.data());
           for (unsigned int j = 0; j < n_tied; ++j)
             {
-              const std::size_t i = bars->index(f, j);
+              const std::size_t i = bars->index(f, bar_offset + j);
               bars->force[i]      = bar_acceleration[j] * bars->mass[i];
             }
           // The multipliers' power on the spheres, lambda . v: the
@@ -361,7 +363,7 @@ namespace YarnImpact
           for (unsigned int j = 0; j < n_tied; ++j)
             {
               power += 0.5 * (bar_force[j] + previous[j]) *
-                       bars->velocity[bars->index(f, j)];
+                       bars->velocity[bars->index(f, bar_offset + j)];
               previous[j] = bar_force[j];
             }
         }

@@ -27,7 +27,8 @@ namespace YarnImpact
     /**
      * The far field of the hybrid yarn as fibres (`Hybrid/Far field =
      * fibre bars`, doc/hybrid.md section 3.4): every fibre of the DEM part
-     * goes on, from the overlap's first node layer to the clamp, as a chain
+     * goes on, from the overlap's first node layer to the clamp (or, with
+     * a DEM part at the clamp, to the end of its overlap), as a chain
      * of m bars per FE cell (`Hybrid/Fibre bars per FE cell`; by default
      * one per DEM truss, so that the overlap ties each sphere to one bar
      * node). Each bar node j carries one axial unknown u_{f,j}; its
@@ -92,7 +93,7 @@ namespace YarnImpact
              const MPI_Comm communicator);
 
       /** v += dt f / m on the own fibres' bar nodes but the clamped one
-       * (the last) [s]. */
+       * (the last, unless a DEM part at the clamp holds the fibres) [s]. */
       void
       kick(const double dt);
 
@@ -195,11 +196,12 @@ namespace YarnImpact
       bool
       fibre_broken(const unsigned int f) const;
 
-      /** Mean strain over the fibres at each FE node layer (of the intact
-       * bars next to its bar node), for the station profile [-]
+      /** Largest strain over the fibres at each FE node layer (of the
+       * intact bars next to its bar node), for the station profile, as the
+       * DEM's profile takes the largest over its fibres [-]
        * (collective). */
       std::vector<double>
-      mean_strains() const;
+      largest_strains() const;
 
       /** Whether the bars stand for the mirror image x -> -x of
        * themselves (those of the FE part on x < 0 of a whole yarn,
@@ -261,8 +263,27 @@ namespace YarnImpact
       MPI_Comm communicator = MPI_COMM_SELF;
       /** Each rank's first fibre (and n_fibres last). */
       std::vector<unsigned int> rank_fibres;
-      /** Bar nodes tied in the overlap (its cells' nodes) [-]. */
-      unsigned int n_overlap_nodes = 0;
+      /** Bar nodes tied in the overlap (its cells' nodes), and in the
+       * overlap of the DEM part at the clamp (the last ones; 0 without such
+       * a part, the last node then held at the clamp) [-]. */
+      unsigned int n_overlap_nodes = 0, n_clamp_nodes = 0;
+
+      /** Bar node of the @p t th tied node: the overlap's first, then
+       * the clamp overlap's. */
+      unsigned int
+      tied_node(const unsigned int t) const
+      {
+        return t < n_overlap_nodes
+                 ? t
+                 : n_nodes - n_clamp_nodes + (t - n_overlap_nodes);
+      }
+
+      /** Bar nodes kicked: all, or all but the clamped last one [-]. */
+      unsigned int
+      n_free_nodes() const
+      {
+        return n_clamp_nodes > 0 ? n_nodes : n_nodes - 1;
+      }
       /** Stable step of the bars alone, fixed at set-up [s]. */
       double stable_step = 0.;
       /** Per fibre, each step: its forces on the node layers (y, z per
@@ -325,7 +346,7 @@ namespace YarnImpact
       unsigned int
       record_size() const
       {
-        return 2 * n_layers + 2 * n_overlap_nodes + 3;
+        return 2 * n_layers + 2 * (n_overlap_nodes + n_clamp_nodes) + 3;
       }
 
       /** Sum of one value per fibre (the own fibres' set, the others'

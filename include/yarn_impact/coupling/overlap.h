@@ -106,6 +106,10 @@ namespace YarnImpact
        * (doc/hybrid.md section 3.4); y and z stay tied to the continuum.
        */
       FibreBars *bars = nullptr;
+      /** The bars' node at the overlap's x_begin: 0 by the nose, the
+       * first of the clamp overlap's nodes at the clamp (set by
+       * set_up) [-]. */
+      unsigned int bar_offset = 0;
       std::vector<ChainConstraint> fibre_constraints;
       /** One fibre's bar node and sphere forces, accelerations and
        * multipliers (one value each, the x component). */
