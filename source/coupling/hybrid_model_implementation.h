@@ -377,7 +377,7 @@ namespace YarnImpact
               s << '\n';
           };
           lines(dem_model->remarks());
-          if (clamp_model)
+          if (clamp_model && !clamp_model->remarks().empty())
             lines("At the clamp: " + clamp_model->remarks());
           // The broken bars of a far field, per millimetre of |x|.
           const auto far_field = [&s](const FibreBars &b, const char *which) {
