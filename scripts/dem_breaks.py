@@ -111,4 +111,5 @@ def main():
               f"  {e.max():.5f}  {profile:+.5f}")
 
 
-main()
+if __name__ == "__main__":
+    main()

@@ -120,27 +120,20 @@ clamp_prm clamp > clamp.prm
   { fail "fibre bars with a clamp part: exit $? (3 = a check failed)"; tail -25 clamp.stdout; }
 grep -E "longitudinal speed|energy error" clamp/summary.txt
 momentum_conserved clamp "fibre bars with a clamp part"
-/usr/bin/python3 - clamp << 'END' || fail "fibre bars with a clamp part: the tie at the clamp"
-import base64, re, struct, sys
+/usr/bin/python3 - "$src" clamp << 'END' || fail "fibre bars with a clamp part: the tie at the clamp"
+import sys
 import numpy as np
-def arrays(path):
-    text = open(path).read()
-    out = {}
-    for m in re.finditer(r'<DataArray type="(\w+)"(?: Name="(\w+)")?[^>]*>([^<]*)</DataArray>', text):
-        b = m.group(3).strip()
-        n = struct.unpack("<I", base64.b64decode(b[:8])[:4])[0]
-        t = {"Float32": np.float32, "Int32": np.int32, "UInt8": np.uint8}[m.group(1)]
-        out[m.group(2) or "Points"] = np.frombuffer(base64.b64decode(b[8:])[:n], dtype=t)
-    return out
+sys.path.insert(0, sys.argv[1] + "/scripts")
+from dem_breaks import piece_arrays
 def trusses(path):
     """(fibre, reference x of the mid-point in um) -> strain."""
-    a = arrays(path)
-    ref = a["Points"].reshape(-1, 3) - a["displacement"].reshape(-1, 3)
-    ends = a["connectivity"].reshape(-1, 2)
+    a = piece_arrays(path)
+    ref = a["points"] - a["displacement"]
+    ends = a["lines"]
     x = np.rint(0.5e6 * (ref[ends[:, 0], 0] + ref[ends[:, 1], 0])).astype(int)
     return {(int(a["fibre_id"][i]), int(xi)): float(e)
             for i, xi, e in zip(ends[:, 0], x, a["strain"])}
-d = sys.argv[1]
+d = sys.argv[2]
 bars, clamp = trusses(d + "/bars_0001_r0.vtu"), trusses(d + "/dem_clamp_0001_r0.vtu")
 common = [k for k in clamp if k in bars]
 worst = max(abs(bars[k] - clamp[k]) for k in common)
