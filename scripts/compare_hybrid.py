@@ -7,6 +7,7 @@ section width at the impact point.
 Usage: compare_hybrid.py HISTORY_HYBRID.csv HISTORY_DEM.csv
 Prints one table row per quantity; exits 1 with one line on a bad file.
 """
+import bisect
 import csv
 import os
 import sys
@@ -54,12 +55,21 @@ def shared_rows(hy, dem, column):
             out.append((t, x, dem[column][j]))
     if len(out) > 1:
         return out
-    out = []
-    for t, x in zip(hy["t [us]"], hy[column]):
-        k = max(0, min(len(times) - 2, next((i for i in range(len(times)) if times[i] > t), len(times)) - 1))
-        w = (t - times[k]) / (times[k + 1] - times[k]) if times[k + 1] > times[k] else 0.0
-        out.append((t, x, (1 - w) * dem[column][k] + w * dem[column][k + 1]))
-    return out
+    values = dem[column]
+    return [(t, x, interpolate(t, times, values))
+            for t, x in zip(hy["t [us]"], hy[column])]
+
+
+def interpolate(t, times, values):
+    """values linearly interpolated at t between the rows around it (the
+    first or last row's value outside them)."""
+    k = bisect.bisect_right(times, t)
+    if k == 0:
+        return values[0]
+    if k == len(times):
+        return values[-1]
+    w = (t - times[k - 1]) / (times[k] - times[k - 1])
+    return (1 - w) * values[k - 1] + w * values[k]
 
 
 def main():

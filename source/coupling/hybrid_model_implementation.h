@@ -377,8 +377,10 @@ namespace YarnImpact
               s << '\n';
           };
           lines(dem_model->remarks());
-          if (clamp_model && !clamp_model->remarks().empty())
-            lines("At the clamp: " + clamp_model->remarks());
+          if (clamp_model)
+            if (const std::string at_clamp = clamp_model->remarks();
+                !at_clamp.empty())
+              lines("At the clamp: " + at_clamp);
           // The broken bars of a far field, per millimetre of |x|.
           const auto far_field = [&s](const FibreBars &b, const char *which) {
             s << "Hybrid far field" << which << ": " << b.n_broken()

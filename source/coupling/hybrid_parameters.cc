@@ -322,6 +322,12 @@ namespace YarnImpact
               "must be field unless Hybrid/Far field = fibre bars (the "
               "section's coarse tie leaves each fibre's axial motion to its "
               "bars)");
+      // The section's coarse tie is built for the overlap by the nose; the
+      // clamp part's overlap ties each sphere (field).
+      require(hybrid.transverse_modes == 0 || l.clamp_cells == 0,
+              "Hybrid/Transverse tie",
+              "must be field with a Hybrid/Clamp DEM length (the clamp "
+              "part's overlap ties each sphere to the continuum)");
       if (l.fibre_bars)
         {
           require(fe.law == FE::LawType::charmetant,

@@ -144,6 +144,8 @@ print(f"clamp overlap: {len(common)} trusses on bars, largest strain {largest:.3
 if len(common) < 400 * 80 or largest < 1e-3 or worst > 1e-6 * largest:
     sys.exit("the clamp part's trusses do not follow their bars")
 END
+refuse bars_prm "the section's tie with a clamp part" "Hybrid/Transverse tie" \
+  'subsection Hybrid\n  set Clamp DEM length = 2e-3\n  set Transverse tie = section mean\nend\n'
 refuse bars_prm "fibre bars with the linear law" "FE/Constitutive law" \
   'subsection FE\n  set Constitutive law = Linear transversely isotropic\nend\n'
 refuse bars_prm "an unknown far field" "Far field" \
