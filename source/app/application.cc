@@ -5,6 +5,7 @@
 #include <yarn_impact/app/output_directory.h>
 #include <yarn_impact/core/checkpoint.h>
 #include <yarn_impact/core/impact_simulation.h>
+#include <yarn_impact/core/memory_estimate.h>
 #include <yarn_impact/core/model_registry.h>
 #include <yarn_impact/core/output_file.h>
 #include <yarn_impact/core/output_lock.h>
@@ -249,9 +250,10 @@ namespace YarnImpact
 
 
   int
-  run_application(int argc, char **argv)
+  run_application(int argc, char **argv, const std::function<void()> &start_mpi)
   {
-    const bool is_root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    // Without MPI (app/main.cc) this is the only rank.
+    const bool is_root = rank_in(MPI_COMM_WORLD) == 0;
     std::ostream &out  = std::cout;
     std::vector<std::string> args(argv + 1, argv + argc);
 
@@ -297,6 +299,7 @@ namespace YarnImpact
               out << file << ": parameters are valid\n";
             return 0;
           }
+        start_mpi();
 
         const auto &output = parameters.shared.output;
         // Held until the run returns: one owner per output directory.

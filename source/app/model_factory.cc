@@ -1,5 +1,6 @@
 #include <yarn_impact/app/application.h>
 #include <yarn_impact/app/model_factory.h>
+#include <yarn_impact/core/memory_estimate.h>
 #include <yarn_impact/core/model_registry.h>
 
 #include <deal.II/base/mpi.h>
@@ -94,8 +95,7 @@ namespace YarnImpact
           check_memory(p.models.at(p.model)->memory_estimate(p.shared),
                        task->name,
                        MPI_COMM_WORLD));
-        if (print &&
-            dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        if (print && rank_in(MPI_COMM_WORLD) == 0)
           out << lines.back() << '\n';
         return;
       }
@@ -103,7 +103,7 @@ namespace YarnImpact
       lines.push_back(check_memory(p.models.at(name)->memory_estimate(p.shared),
                                    name,
                                    MPI_COMM_WORLD));
-    if (print && dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    if (print && rank_in(MPI_COMM_WORLD) == 0)
       for (const auto &line : lines)
         out << line << '\n';
   }

@@ -29,28 +29,54 @@ namespace YarnImpact
     return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
   }
 
+  unsigned int
+  ranks_in(const MPI_Comm communicator)
+  {
+    return dealii::Utilities::MPI::job_supports_mpi()
+             ? dealii::Utilities::MPI::n_mpi_processes(communicator)
+             : 1;
+  }
+
+
+  unsigned int
+  rank_in(const MPI_Comm communicator)
+  {
+    return dealii::Utilities::MPI::job_supports_mpi()
+             ? dealii::Utilities::MPI::this_mpi_process(communicator)
+             : 0;
+  }
+
+
   std::string
   check_memory(const MemoryEstimate &estimate,
                const std::string &model_name,
                const MPI_Comm communicator)
   {
     const unsigned int n_ranks =
-      dealii::Utilities::MPI::n_mpi_processes(communicator);
-    // The ranks that share this machine's memory.
-    MPI_Comm node;
-    MPI_Comm_split_type(communicator,
-                        MPI_COMM_TYPE_SHARED,
-                        0,
-                        MPI_INFO_NULL,
-                        &node);
-    const unsigned int ranks_here =
-      dealii::Utilities::MPI::n_mpi_processes(node);
-    MPI_Comm_free(&node);
+      dealii::Utilities::MPI::job_supports_mpi()
+        ? dealii::Utilities::MPI::n_mpi_processes(communicator)
+        : 1;
+    // The ranks that share this machine's memory. One rank needs no MPI
+    // call (it may run without MPI: app/main.cc).
+    unsigned int ranks_here = 1;
+    if (n_ranks > 1)
+      {
+        MPI_Comm node;
+        MPI_Comm_split_type(communicator,
+                            MPI_COMM_TYPE_SHARED,
+                            0,
+                            MPI_INFO_NULL,
+                            &node);
+        ranks_here = dealii::Utilities::MPI::n_mpi_processes(node);
+        MPI_Comm_free(&node);
+      }
     const double here =
       estimate.bytes * ranks_here / n_ranks + base_per_rank * ranks_here;
     // One view of the machine: rank 0's.
     const double available =
-      dealii::Utilities::MPI::broadcast(communicator, available_memory(), 0);
+      n_ranks > 1
+        ? dealii::Utilities::MPI::broadcast(communicator, available_memory(), 0)
+        : available_memory();
     std::ostringstream s;
     s.precision(3);
     if (here > available)

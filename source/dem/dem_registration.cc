@@ -94,10 +94,9 @@ namespace YarnImpact
           const YarnImpact::Parameters::Shared &shared) const override
         {
           if (own_task())
-            return elementary_memory_estimate(
-              shared,
-              elementary,
-              dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
+            return elementary_memory_estimate(shared,
+                                              elementary,
+                                              ranks_in(MPI_COMM_WORLD));
           return DEM::memory_estimate(shared, parameters);
         }
 

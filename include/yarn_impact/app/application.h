@@ -6,6 +6,7 @@
 #include <yarn_impact/core/model_registry.h>
 #include <yarn_impact/core/parameters.h>
 
+#include <functional>
 #include <iosfwd>
 #include <map>
 #include <memory>
@@ -73,11 +74,19 @@ namespace YarnImpact
 
   /**
    * The command line: `yarn-impact file.prm`, `--check file.prm`,
-   * `--print-parameters`, `--help`. Must be called with MPI initialised.
+   * `--restart file.prm`, `--print-parameters`, `--help`.
+   *
+   * MPI may be initialised or not on entry. If it is not, the process is
+   * the only rank, and @p start_mpi, which must initialise MPI (once, its
+   * later calls doing nothing), is called once the parameters are read and
+   * valid and the run is to go on: `--help`, `--print-parameters`,
+   * `--check` and a refused set-up need no MPI (app/main.cc).
    * @return the process exit code
    */
   int
-  run_application(int argc, char **argv);
+  run_application(int argc,
+                  char **argv,
+                  const std::function<void()> &start_mpi);
 } // namespace YarnImpact
 
 #endif

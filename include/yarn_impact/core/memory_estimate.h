@@ -24,6 +24,17 @@ namespace YarnImpact
     std::string parameter;
   };
 
+  /** Number of ranks of @p communicator; 1 where MPI is not initialised
+   * (a parameter check or a refused set-up runs without MPI: app/main.cc),
+   * as MPI would give a run without a launcher. */
+  unsigned int
+  ranks_in(const MPI_Comm communicator);
+
+  /** This process's rank in @p communicator; 0 where MPI is not
+   * initialised (see ranks_in()). */
+  unsigned int
+  rank_in(const MPI_Comm communicator);
+
   /** Memory this machine has available now (MemAvailable of
    * /proc/meminfo, else the physical memory) [B]. */
   double
@@ -34,7 +45,7 @@ namespace YarnImpact
    * estimate, with @p base_per_rank [B] for each rank of @p communicator
    * on this machine, exceeds the memory available on it; otherwise return
    * a one-line report "memory estimate: ... MB for N cells on R ranks".
-   * Collective.
+   * Collective; needs no MPI on one rank.
    */
   std::string
   check_memory(const MemoryEstimate &estimate,
