@@ -52,10 +52,7 @@ namespace YarnImpact
                const std::string &model_name,
                const MPI_Comm communicator)
   {
-    const unsigned int n_ranks =
-      dealii::Utilities::MPI::job_supports_mpi()
-        ? dealii::Utilities::MPI::n_mpi_processes(communicator)
-        : 1;
+    const unsigned int n_ranks = ranks_in(communicator);
     // The ranks that share this machine's memory. One rank needs no MPI
     // call (it may run without MPI: app/main.cc).
     unsigned int ranks_here = 1;
