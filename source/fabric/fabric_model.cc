@@ -8,6 +8,7 @@
 #include <yarn_impact/fabric/fabric_model.h>
 #include <yarn_impact/fabric/mesh_file.h>
 #include <yarn_impact/fabric/step_timer.h>
+#include <yarn_impact/fabric/yarn_contact_forces.h>
 #include <yarn_impact/fe/extra_forces.h>
 #include <yarn_impact/fe/fe_model.h>
 
@@ -30,219 +31,6 @@ namespace YarnImpact
   {
     namespace
     {
-      /**
-       * The YarnContact of the patch's crossing yarns as the FE model's
-       * extra forces: its surface is the lateral surface of the whole
-       * mesh, made on every rank before the FE model distributes its own
-       * copy; each rank's nodes on it are the owned FE nodes found at the
-       * same reference position (the two meshes are made by the same
-       * code, so that their vertices are equal bit for bit).
-       */
-      class YarnContactForces : public FE::ExtraForces
-      {
-      public:
-        /** @param surface the lateral surface of the whole patch
-         * @param timer the fabric's step timer, which times the contact's
-         * parts
-         * @param symmetry the whole patch over the meshed part [-]
-         * (1, 2, 4), by which energy() and dissipated() scale the
-         * contact's to the whole patch's, as the FE model scales its own */
-        YarnContactForces(const YarnContactParameters &parameters,
-                          ContactSurface &&surface,
-                          std::shared_ptr<StepTimer> timer,
-                          const double symmetry)
-          : parameters(parameters)
-          , surface(std::move(surface))
-          , timer(std::move(timer))
-          , symmetry(symmetry)
-        {}
-
-        std::vector<unsigned int>
-        setup(const std::vector<double> &reference,
-              const MPI_Comm communicator) override
-        {
-          std::map<std::array<double, 3>, unsigned int> index;
-          for (unsigned int n = 0; n < surface.n_nodes(); ++n)
-            index.emplace(std::array<double, 3>{{surface.reference[n][0],
-                                                 surface.reference[n][1],
-                                                 surface.reference[n][2]}},
-                          n);
-          // (surface node, FE node), in the surface's order.
-          std::vector<std::pair<unsigned int, unsigned int>> found;
-          for (unsigned int k = 0; 3 * k < reference.size(); ++k)
-            {
-              const auto it = index.find({{reference[3 * k],
-                                           reference[3 * k + 1],
-                                           reference[3 * k + 2]}});
-              if (it != index.end())
-                found.emplace_back(it->second, k);
-            }
-          std::sort(found.begin(), found.end());
-          std::vector<unsigned int> owned, nodes;
-          for (const auto &f : found)
-            {
-              owned.push_back(f.first);
-              nodes.push_back(f.second);
-            }
-          // Throws if some surface node is owned by no rank.
-          contact.emplace(parameters, surface, owned, communicator);
-          contact->set_timer(timer.get());
-          this->communicator = communicator;
-          for (const unsigned int n : owned)
-            for (unsigned int d = 0; d < 3; ++d)
-              node_reference.push_back(surface.reference[n][d]);
-          return nodes;
-        }
-
-        void
-        add_forces(const std::vector<double> &x,
-                   const std::vector<double> &v,
-                   const double dt,
-                   std::vector<double> &force) override
-        {
-          // force holds only these forces (FE model): their sums over
-          // the steps, for the check that they balance (remarks()).
-          contact->add_forces(x, v, dt, force);
-          positions = x;
-          for (unsigned int i = 0; i < force.size(); ++i)
-            {
-              net[i % 3] += force[i];
-              magnitude += std::abs(force[i]);
-            }
-        }
-
-        /** The contacts' state and the check of their forces' balance for
-         * the run summary: the sum over the steps of the net force,
-         * whose every contact's forces cancel to round-off, over the sum
-         * of its components' magnitudes [-]. Collective. */
-        std::string
-        remarks() const
-        {
-          double sums[4] = {net[0], net[1], net[2], magnitude};
-          MPI_Allreduce(MPI_IN_PLACE,
-                        sums,
-                        4,
-                        MPI_DOUBLE,
-                        MPI_SUM,
-                        communicator);
-          const double balance =
-            std::sqrt(sums[0] * sums[0] + sums[1] * sums[1] +
-                      sums[2] * sums[2]) /
-            std::max(sums[3], 1e-300);
-          const unsigned int touching = contact->n_touching();
-          const double energy = this->energy(), work = dissipated();
-          std::ostringstream s;
-          s << "yarn contact: " << touching << " touching contacts at the end, "
-            << contact->n_rebuilds() << " candidate lists built; energy "
-            << energy * 1e3 << " mJ, dissipated " << work * 1e3
-            << " mJ; net force over the sum of |forces|, all steps, "
-            << balance;
-          return s.str();
-        }
-
-        /**
-         * The cone's (transverse) fronts [m] at the positions of the last
-         * add_forces(): the largest reference distance from the impact
-         * point (@p x0, @p z0) [m] of a surface node deflected along -y by
-         * more than @p threshold [m], among the nodes within @p band [m]
-         * of the line through the impact point along x (the warp yarns'
-         * direction), along z (the weft yarns') and along the diagonals
-         * x = +-z; 0 where none. Collective.
-         */
-        std::array<double, 3>
-        cone_fronts(const double x0,
-                    const double z0,
-                    const double threshold,
-                    const double band) const
-        {
-          std::array<double, 3> front = {{0., 0., 0.}};
-          for (unsigned int k = 0; 3 * k < positions.size(); ++k)
-            {
-              const double *X = &node_reference[3 * k];
-              if (X[1] - positions[3 * k + 1] <= threshold)
-                continue;
-              const double dx = X[0] - x0, dz = X[2] - z0;
-              if (std::abs(dz) < band)
-                front[0] = std::max(front[0], std::abs(dx));
-              if (std::abs(dx) < band)
-                front[1] = std::max(front[1], std::abs(dz));
-              if (std::min(std::abs(dx - dz), std::abs(dx + dz)) <
-                  std::sqrt(2.) * band)
-                front[2] = std::max(front[2], std::hypot(dx, dz));
-            }
-          MPI_Allreduce(MPI_IN_PLACE,
-                        front.data(),
-                        3,
-                        MPI_DOUBLE,
-                        MPI_MAX,
-                        communicator);
-          return front;
-        }
-
-        double
-        stable_time_step() const override
-        {
-          return contact->stable_time_step();
-        }
-
-        double
-        energy() const override
-        {
-          return symmetry * contact->energy();
-        }
-
-        double
-        dissipated() const override
-        {
-          return symmetry * contact->dissipated();
-        }
-
-        void
-        save(Checkpoint::Writer &out) const override
-        {
-          contact->save(out);
-          out.put(std::vector<double>{net[0], net[1], net[2], magnitude});
-        }
-
-        void
-        load(Checkpoint::Reader &in) override
-        {
-          contact->load(in);
-          std::vector<double> sums(4);
-          in.get_same_size(sums, "sums of the yarn contact's forces");
-          std::copy(sums.begin(), sums.begin() + 3, net);
-          magnitude = sums[3];
-        }
-
-        std::string
-        report() const override
-        {
-          std::ostringstream s;
-          s << "[fabric] yarn contact: " << surface.n_nodes()
-            << " surface nodes, " << surface.faces.size() << " faces, penalty "
-            << parameters.penalty << " Pa/m, friction " << parameters.friction
-            << ": stable step of a node on its springs "
-            << contact->stable_time_step() * 1e9 << " ns\n";
-          return s.str();
-        }
-
-      private:
-        const YarnContactParameters parameters;
-        const ContactSurface surface;
-        const std::shared_ptr<StepTimer> timer;
-        const double symmetry;
-        std::optional<YarnContact> contact;
-        MPI_Comm communicator = MPI_COMM_SELF;
-        /** The reference positions [m] of this rank's nodes, 3 each, in
-         * the order of add_forces(), and their positions [m] at the last
-         * add_forces(). */
-        std::vector<double> node_reference, positions;
-        /** Sums over the steps of this rank's yarn-contact forces [N] and
-         * of their components' magnitudes [N]. */
-        double net[3] = {0., 0., 0.}, magnitude = 0.;
-      };
-
-
       /**
        * The FE model of the patch under the name "fabric", with the copy
        * of the run's parameters it refers to, and the axial properties of
@@ -364,12 +152,19 @@ namespace YarnImpact
               o.extra_columns.push_back(1e3 * k);
               o.extra_columns.push_back(1e3 * e);
             }
-          for (const double f :
-               yarn_contact->cone_fronts(shared->projectile.offset_x,
-                                         shared->projectile.offset_z,
-                                         cone_threshold,
-                                         0.5 * spacing))
-            o.extra_columns.push_back(1e3 * f);
+          // The whole fabric's fronts: the farthest of the plies'.
+          const std::vector<double> fronts =
+            yarn_contact->cone_fronts(shared->projectile.offset_x,
+                                      shared->projectile.offset_z,
+                                      cone_threshold,
+                                      0.5 * spacing);
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              double f = 0.;
+              for (unsigned int p = 0; p < n_plies; ++p)
+                f = std::max(f, fronts[3 * p + d]);
+              o.extra_columns.push_back(1e3 * f);
+            }
           o.extra_columns.push_back(broken);
           for (unsigned int p = 0; n_plies > 1 && p < n_plies; ++p)
             {
@@ -378,6 +173,8 @@ namespace YarnImpact
               o.extra_columns.push_back(1e3 *
                                         (strain[2 * p] + strain[2 * p + 1]));
             }
+          for (unsigned int i = 0; n_plies > 1 && i < fronts.size(); ++i)
+            o.extra_columns.push_back(1e3 * fronts[i]);
           return o;
         }
         /** The yarns' momentum along the impact direction, which with the
@@ -391,7 +188,8 @@ namespace YarnImpact
          * each line through the impact point); the broken yarns [-],
          * those with a section whose every cell has failed or been
          * eroded; with several plies, each ply's kinetic and strain
-         * energies [mJ]. */
+         * energies [mJ], then each ply's cone fronts [mm], of which the
+         * fabric's are the farthest. */
         std::vector<std::string>
         extra_column_names() const override
         {
@@ -411,6 +209,10 @@ namespace YarnImpact
             for (const char *e : {"kinetic", "strain"})
               names.push_back("ply " + std::to_string(p) + " " + e +
                               " energy [mJ]");
+          for (unsigned int p = 0; n_plies > 1 && p < n_plies; ++p)
+            for (const char *d : {"warp", "weft", "diagonal"})
+              names.push_back("ply " + std::to_string(p) +
+                              " cone front along " + d + " [mm]");
           return names;
         }
         /** The FE's, with the area of one yarn's section: the patch's mass
@@ -549,9 +351,11 @@ namespace YarnImpact
       contact.mirror_z              = g.mirror_z;
       const auto yarn_contact       = std::make_shared<YarnContactForces>(
         contact,
-        make_contact_surface(whole, density, {BoundaryIds::lateral}),
+        make_contact_surface(whole, density, yarn_contact_boundary_ids()),
         timer,
-        YarnImpact::Parameters::symmetry_factor(shared.general.symmetry));
+        YarnImpact::Parameters::symmetry_factor(shared.general.symmetry),
+        g.n_plies,
+        g.n_warp + g.n_weft);
       p.extra_forces = yarn_contact;
 
       return std::make_unique<FabricModel>(std::move(copy),

@@ -32,7 +32,12 @@ Prints one line per check, "ok" or "FAILED", and exits 1 if one failed.
         (x = 0, where their slope is theta), which it cannot pass
         without the upper ply pressing the lower one; printed with the
         delay after t_0 over g / v_0, the time to cross the gap at the
-        projectile's speed.
+        projectile's speed;
+    (4) the cone's fronts of each ply: the fabric's fronts (along the
+        warp, the weft and the diagonal) are the farthest of the plies'
+        at every row; the lower ply's are 0 at every row of (2), where it
+        is at rest, and above 0 by the end; they are never beyond the
+        struck ply's, which leads the cone.
   broken DIR         a patch with a low Yarn/Failure strain, sudden
                      failure, and a snapshot at its last row:
     (1) the history's broken yarns 0 at every row without a failed or
@@ -124,6 +129,21 @@ def plies(directory, h, a, ay):
               f"mJ kinetic)")
         return
     crossing = 1e6 * gap / v0
+    lines = ("warp", "weft", "diagonal")
+    whole = [header.index(f"cone front along {d} [mm]") for d in lines]
+    ply = [[header.index(f"ply {p} cone front along {d} [mm]") for d in lines]
+           for p in (0, 1)]
+    check(all(r[whole[d]] == max(r[ply[0][d]], r[ply[1][d]])
+              for r in rows for d in range(3)),
+          "cone fronts: the fabric's the farthest of the plies' at every row")
+    at_rest = max(r[c] for r in still for c in ply[1])
+    led = all(r[ply[1][d]] <= r[ply[0][d]] for r in rows for d in range(3))
+    check(at_rest == 0. and max(last[c] for c in ply[1]) > 0. and led,
+          f"cone fronts: the lower ply's {at_rest:.4g} mm while at rest, "
+          f"{', '.join(f'{last[c]:.4g}' for c in ply[1])} mm at the end "
+          f"(warp, weft, diagonal; above 0), never beyond the struck "
+          f"ply's ({', '.join(f'{last[c]:.4g}' for c in ply[0])} mm at "
+          f"the end): {'yes' if led else 'NO'}")
     check(moving[DISP] < reach,
           f"lower ply moving at {moving[T]:.4g} us, the projectile "
           f"{moving[DISP]:.4g} mm down (before {reach:.4g} mm); "

@@ -36,7 +36,8 @@
 #               the plies' meshes at rest; the plies' energies summing to
 #               the yarns', the lower ply still until the upper one can
 #               have crossed the gap, then set moving before the projectile
-#               could pass the upper ply (check_plies.py plies);
+#               could pass the upper ply, each ply's cone fronts
+#               (check_plies.py plies);
 #               the two histories byte for byte the same.
 #  broken       4 x 4 yarns, Yarn/Failure strain 2 %, sudden failure,
 #               3 us, a snapshot at the end, on 1 and 2 ranks: the

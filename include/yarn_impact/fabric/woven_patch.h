@@ -74,8 +74,9 @@ namespace YarnImpact
     /** The boundary id of the end sections of a yarn whose ends are free
      * (WovenPatchGeometry::clamp_warp_ends, clamp_weft_ends): neither
      * BoundaryIds::lateral nor BoundaryIds::end, so that the FE model
-     * clamps none of its nodes and the yarn contact's surface, made of
-     * the lateral faces, leaves it out. */
+     * clamps none of its nodes and the projectile's contact, on the
+     * lateral faces, leaves it out; the yarn contact acts on it
+     * (yarn_contact_boundary_ids()). */
     constexpr unsigned int free_end_boundary_id = 3;
 
     /** The boundary id of the faces on a symmetry plane
