@@ -80,8 +80,9 @@ namespace YarnImpact
                             "1",
                             Integer(),
                             "Number of plies: copies of the woven layer "
-                            "stacked along -y, aligned, ply 0 on top, struck "
-                            "first [-].");
+                            "stacked along -y, each shifted from the one "
+                            "above by Ply spacing and by Ply offset x and z, "
+                            "ply 0 on top, struck first [-].");
           prm.declare_entry("Ply spacing",
                             "0.5e-3",
                             Double(),
@@ -92,6 +93,19 @@ namespace YarnImpact
                             "Yarn/Thickness semi-axis scaled to the "
                             "ellipse's area), so that the plies do not touch "
                             "at rest [m].");
+          prm.declare_entry("Ply offset x",
+                            "0",
+                            Double(),
+                            "Shift along x of each ply from the ply above, "
+                            "with several plies: ply p is ply 0 moved by p "
+                            "times it; 0 (and Ply offset z 0) stacks the "
+                            "plies aligned, their crossings over each other. "
+                            "0 with a symmetry plane [m].");
+          prm.declare_entry("Ply offset z",
+                            "0",
+                            Double(),
+                            "Shift along z of each ply from the ply above, "
+                            "as Ply offset x [m].");
           prm.declare_entry("Cone deflection threshold",
                             "10e-6",
                             Double(),
@@ -178,6 +192,8 @@ namespace YarnImpact
           g.clamp_weft_ends = (clamped == "all" || clamped == "weft ends");
           g.n_plies         = get_positive_integer(prm, "Fabric", "Plies");
           g.ply_spacing     = get_positive_double(prm, "Fabric", "Ply spacing");
+          g.ply_offset_x    = prm.get_double("Ply offset x");
+          g.ply_offset_z    = prm.get_double("Ply offset z");
           fabric.cone_threshold =
             get_positive_double(prm, "Fabric", "Cone deflection threshold");
           fabric.mesh_file        = prm.get("Mesh file");
@@ -392,6 +408,14 @@ namespace YarnImpact
                   "Symmetry",
                   "must be none with Fabric/Mesh file: only the generated "
                   "patch is cut by symmetry planes");
+          require(p.n_plies == 1 || p.ply_offset_x == 0.,
+                  "Fabric/Ply offset x",
+                  "must be 0 with Symmetry = half or quarter: plies shifted "
+                  "in the fabric's plane are not mirror-symmetric");
+          require(p.n_plies == 1 || p.ply_offset_z == 0.,
+                  "Fabric/Ply offset z",
+                  "must be 0 with Symmetry = half or quarter: plies shifted "
+                  "in the fabric's plane are not mirror-symmetric");
           require(p.n_weft % 2 == 1,
                   "Fabric/Weft yarns",
                   "must be odd with Symmetry = half or quarter: the plane "

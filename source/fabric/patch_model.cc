@@ -107,7 +107,13 @@ namespace YarnImpact
                                 : "")
               << (patch->is_warp(id) ? "warp " : "weft ")
               << patch->index_in_family(id);
-      plies << g.n_plies << " plies, aligned, their mid-planes at y =";
+      plies << g.n_plies << " plies, ";
+      if (g.ply_offset_x == 0. && g.ply_offset_z == 0.)
+        plies << "aligned";
+      else
+        plies << "each shifted by (" << g.ply_offset_x * 1e3 << ", "
+              << g.ply_offset_z * 1e3 << ") mm along (x, z) from the one above";
+      plies << ", their mid-planes at y =";
       for (unsigned int k = 0; k < g.n_plies; ++k)
         plies << (k > 0 ? "," : "") << " " << patch->ply_height(k) * 1e3;
       plies << " mm (yarn ids " << patch->yarns_per_ply()

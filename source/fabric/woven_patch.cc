@@ -49,6 +49,11 @@ namespace YarnImpact
         throw std::invalid_argument(
           "WovenPatch: a symmetry plane needs an odd number of the yarns "
           "parallel to it and an even number of cells per spacing");
+      if ((g.mirror_x || g.mirror_z) && g.n_plies > 1 &&
+          (g.ply_offset_x != 0. || g.ply_offset_z != 0.))
+        throw std::invalid_argument(
+          "WovenPatch: plies shifted in the fabric's plane have no symmetry "
+          "plane");
       const double k = numbers::PI / g.spacing;
       for (unsigned int id = 0; id < yarns_per_ply(); ++id)
         {
@@ -139,13 +144,15 @@ namespace YarnImpact
       // Warp: shifted across by z_i. Weft: turned about y, its own x the
       // patch's z and its own z the patch's -x, shifted by x_j (a
       // rotation, so that the cells keep their orientation). Both
-      // shifted up by their ply's depth (ply 0's y untouched, bit for
-      // bit).
+      // shifted up by their ply's depth and back along themselves by
+      // their ply's shift in the plane (ply 0's coordinates untouched,
+      // bit for bit; position() holds the shift across).
       const unsigned int p = ply(id);
       const double y       = p == 0 ? X[1] : X[1] - ply_height(p);
       const double o       = position(id);
-      return is_warp(id) ? Point<3>(X[0], y, X[2] - o)
-                         : Point<3>(X[2], y, o - X[0]);
+      return is_warp(id)
+               ? Point<3>(p == 0 ? X[0] : X[0] - ply_shift(p, 0), y, X[2] - o)
+               : Point<3>(p == 0 ? X[2] : X[2] - ply_shift(p, 2), y, o - X[0]);
     }
 
 
@@ -201,12 +208,13 @@ namespace YarnImpact
         return static_cast<unsigned int>(
           std::clamp(std::round(offset + 0.5 * (n - 1.)), 0., n - 1.));
       };
-      const double a_z2 = g.width_semi_axis * g.width_semi_axis;
-      const double bound =
-        std::min(section_radius(first + nearest(X[2] / g.spacing, g.n_warp), X),
-                 section_radius(first + g.n_warp +
-                                  nearest(X[0] / g.spacing, g.n_weft),
-                                X));
+      const unsigned int q = static_cast<unsigned int>(p);
+      const double x       = q == 0 ? X[0] : X[0] - ply_shift(q, 0);
+      const double z       = q == 0 ? X[2] : X[2] - ply_shift(q, 2);
+      const double a_z2    = g.width_semi_axis * g.width_semi_axis;
+      const double bound   = std::min(
+        section_radius(first + nearest(z / g.spacing, g.n_warp), X),
+        section_radius(first + g.n_warp + nearest(x / g.spacing, g.n_weft), X));
       unsigned int best = first;
       double smallest   = std::numeric_limits<double>::max();
       for (unsigned int id = first; id < first + yarns_per_ply(); ++id)
@@ -254,11 +262,14 @@ namespace YarnImpact
           const bool warp    = is_warp(id);
           const bool shifted = ply(id) > 0;
           const double h     = ply_height(ply(id));
+          // The ply's shift along the yarn (position() holds the one
+          // across it).
+          const double a = ply_shift(ply(id), warp ? 0 : 2);
           GridTools::transform(
-            [o, warp, shifted, h](const Point<3> &p) {
+            [o, warp, shifted, h, a](const Point<3> &p) {
               const double y = shifted ? p[1] + h : p[1];
-              return warp ? Point<3>(p[0], y, p[2] + o)
-                          : Point<3>(o - p[2], y, p[0]);
+              const double s = a != 0. ? p[0] + a : p[0];
+              return warp ? Point<3>(s, y, p[2] + o) : Point<3>(o - p[2], y, s);
             },
             parts[id]);
           for (const auto &cell : parts[id].active_cell_iterators())

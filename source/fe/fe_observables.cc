@@ -171,9 +171,8 @@ namespace YarnImpact
             }
           for (unsigned int a = 0; a < n_nodes; ++a)
             {
-              const unsigned int s = static_cast<unsigned int>(std::round(
-                (std::abs(reference_abscissa[dofs[3 * a]]) - station_origin) /
-                station_spacing));
+              const unsigned int s =
+                station_of(reference_abscissa[dofs[3 * a]]);
               // Each cell has four vertices on each of its two layers.
               sums.add(st + 2 * n + s,
                        0.25 * cell_volume[c] *

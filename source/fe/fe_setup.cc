@@ -445,8 +445,7 @@ namespace YarnImpact
             // end sections are clamped.
             const double x = reference_abscissa[node[0]];
             const double z = reference_coordinate[node[2]];
-            node_station.push_back(static_cast<unsigned int>(
-              std::round((std::abs(x) - station_origin) / station_spacing)));
+            node_station.push_back(station_of(x));
             std::array<bool, 3> fixed = {{false, false, false}};
             if (parameters.mesh.given()
                   ? bool(clamped[node[0]])

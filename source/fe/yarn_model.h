@@ -22,7 +22,9 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -215,6 +217,18 @@ namespace YarnImpact
       abscissa(const dealii::Point<3> &X) const
       {
         return crimped ? crimped->abscissa_of(X) : X[0];
+      }
+
+      /** The station [-] of the profile nearest the abscissa @p x [m]
+       * (by |x| from station_origin); the last one for a point beyond it
+       * (a fabric's plies shifted along x reach past the span the
+       * stations cover). */
+      unsigned int
+      station_of(const double x) const
+      {
+        return std::min(n_stations - 1,
+                        static_cast<unsigned int>(std::round(
+                          (std::abs(x) - station_origin) / station_spacing)));
       }
 
       /** The height [m] of the reference point @p X [m] across the yarn,

@@ -3,10 +3,13 @@
 (fabric_runs.sh plies and broken) on their history CSVs and snapshots.
 Prints one line per check, "ok" or "FAILED", and exits 1 if one failed.
 
-  plies DIR H A AY   a patch of two plies, their mid-planes H [m] apart,
+  plies DIR H A AY [shifted]
+                     a patch of two plies, their mid-planes H [m] apart,
                      crimp amplitude A [m], thickness semi-axis AY [m],
                      struck at the centre by the cylinder, no failure, a
-                     history row at every step, a snapshot at t = 0:
+                     history row at every step, a snapshot at t = 0;
+                     shifted: the lower ply shifted in the fabric's plane
+                     (Fabric/Ply offset x, z), where (3) does not apply:
     (0) the gap g between the plies at rest, the lowest vertex of the upper
         ply's mesh above the highest of the lower one's (the first
         snapshot), positive and at most the ellipses' H - 2 (A + AY) (the
@@ -32,7 +35,8 @@ Prints one line per check, "ok" or "FAILED", and exits 1 if one failed.
         (x = 0, where their slope is theta), which it cannot pass
         without the upper ply pressing the lower one; printed with the
         delay after t_0 over g / v_0, the time to cross the gap at the
-        projectile's speed;
+        projectile's speed (aligned plies only: the bound takes the
+        lower ply's crossings under the upper one's);
     (4) the cone's fronts of each ply: the fabric's fronts (along the
         warp, the weft and the diagonal) are the farthest of the plies'
         at every row; the lower ply's are 0 at every row of (2), where it
@@ -50,7 +54,8 @@ Prints one line per check, "ok" or "FAILED", and exits 1 if one failed.
         sections has every cell failed (broken, fully damaged or eroded):
         equal to the history's last row.
 
-Usage: check_plies.py plies DIR H A AY | broken DIR N_WARP N_WEFT S CPS
+Usage: check_plies.py plies DIR H A AY [shifted]
+       check_plies.py broken DIR N_WARP N_WEFT S CPS
 """
 import array
 import base64
@@ -82,7 +87,7 @@ def history(directory):
 T, DISP, V, F, KY, EL, FAILED, ERODED = 0, 3, 4, 5, 6, 8, 14, 22
 
 
-def plies(directory, h, a, ay):
+def plies(directory, h, a, ay, shifted=False):
     header, rows = history(directory)
     cols = [(header.index(f"ply {p} kinetic energy [mJ]"),
              header.index(f"ply {p} strain energy [mJ]")) for p in (0, 1)]
@@ -144,6 +149,12 @@ def plies(directory, h, a, ay):
           f"(warp, weft, diagonal; above 0), never beyond the struck "
           f"ply's ({', '.join(f'{last[c]:.4g}' for c in ply[0])} mm at "
           f"the end): {'yes' if led else 'NO'}")
+    if shifted:
+        print(f"(lower ply moving at {moving[T]:.4g} us, the projectile "
+              f"{moving[DISP]:.4g} mm down; at the end ply 1 "
+              f"{last[k1]:.4g} + {last[e1]:.4g} mJ, ply 0 "
+              f"{last[cols[0][0]]:.4g} + {last[cols[0][1]]:.4g} mJ)")
+        return
     check(moving[DISP] < reach,
           f"lower ply moving at {moving[T]:.4g} us, the projectile "
           f"{moving[DISP]:.4g} mm down (before {reach:.4g} mm); "
@@ -226,7 +237,8 @@ def broken(directory, n_warp, n_weft, s, cps):
 
 
 if sys.argv[1] == "plies":
-    plies(sys.argv[2], *(float(x) for x in sys.argv[3:6]))
+    plies(sys.argv[2], *(float(x) for x in sys.argv[3:6]),
+          shifted=sys.argv[6:7] == ["shifted"])
 elif sys.argv[1] == "broken":
     broken(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]),
            float(sys.argv[5]), int(sys.argv[6]))

@@ -37,8 +37,11 @@
 #               the yarns', the lower ply still until the upper one can
 #               have crossed the gap, then set moving before the projectile
 #               could pass the upper ply, each ply's cone fronts
-#               (check_plies.py plies);
-#               the two histories byte for byte the same.
+#               (check_plies.py plies); the two histories byte for byte
+#               the same; 2 plies 0.4 mm apart, the lower one shifted by
+#               (0.5, 0.5) mm in the fabric's plane (Fabric/Ply offset x,
+#               z), 3.3 us, 1 rank: the same checks but the bound on when
+#               the lower ply moves, which takes aligned crossings.
 #  broken       4 x 4 yarns, Yarn/Failure strain 2 %, sudden failure,
 #               3 us, a snapshot at the end, on 1 and 2 ranks: the
 #               history's broken yarns 0 before any cell fails, above 0 by
@@ -202,6 +205,14 @@ case $case in
     histories_agree plies_1/history_fabric.csv plies_2/history_fabric.csv \
       "plies: the history on 2 ranks is the one on 1 rank, byte for byte" \
       "plies: the history on 2 ranks differs from the one on 1 rank"
+    shift='subsection Fabric\n  set Plies = 2\n  set Ply spacing = 0.4e-3\n  set Ply offset x = 0.5e-3\n  set Ply offset z = 0.5e-3\nend\n'
+    patch shifted 4 4 3.3e-6 1e-9 "$no_failure$shift" > shifted.prm
+    sed -i 's/set Snapshot interval = 0$/set Snapshot interval = 3.3e-6/' shifted.prm
+    run 1 shifted.prm
+    [ "$rc" -eq 0 ] || fail "shifted plies: exit $rc: $(head -c 300 stderr)"
+    grep -q "each shifted by (0.5, 0.5) mm" stdout || fail "shifted plies: the set-up report does not give the shift"
+    /usr/bin/python3 "$here/check_history.py" energy shifted || failures=$((failures + 1))
+    /usr/bin/python3 "$here/check_plies.py" plies shifted 0.4e-3 0.1e-3 0.0575e-3 shifted || failures=$((failures + 1))
     ;;
   broken)
     weak='subsection Yarn\n  set Failure model = sudden\n  set Failure strain = 0.02\nend\n'

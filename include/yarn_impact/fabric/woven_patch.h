@@ -45,9 +45,10 @@ namespace YarnImpact
       /** Whether the two end sections of every weft yarn (the patch's
        * edges z = +-n_warp s / 2) are clamped; free ends otherwise. */
       bool clamp_weft_ends = true;
-      /** Plies [-]: copies of the woven layer stacked along -y, aligned
-       * (each the layer shifted along y only), ply 0 on top (its
-       * mid-plane y = 0), struck first. */
+      /** Plies [-]: copies of the woven layer stacked along -y, each
+       * shifted from the one above by ply_spacing down and by
+       * (ply_offset_x, ply_offset_z) in the fabric's plane (aligned where
+       * both are 0), ply 0 on top (its mid-plane y = 0), struck first. */
       unsigned int n_plies = 1;
       /** Distance along y between the mid-planes of consecutive plies
        * [m]: ply p's mid-plane is at y = -p ply_spacing. Used with
@@ -55,6 +56,11 @@ namespace YarnImpact
        * (WovenPatch::ply_thickness), so that the plies do not touch at
        * rest. */
       double ply_spacing = 0.5e-3;
+      /** The shift along x and along z [m] of each ply from the ply above
+       * it: ply p is ply 0 moved by p ply_offset_x along x and
+       * p ply_offset_z along z (a stack laid up with the plies' crossings
+       * not over each other). 0 with a symmetry plane. */
+      double ply_offset_x = 0., ply_offset_z = 0.;
       /** The symmetry plane x = 0 (`Symmetry = half` and `quarter`): only
        * the half x <= 0 is meshed, the warp yarns cut at mid-length, the
        * middle weft yarn, on the plane, cut lengthwise (its half section
@@ -172,6 +178,15 @@ namespace YarnImpact
         return p == 0 ? 0. : -(p * g.ply_spacing);
       }
 
+      /** The shift [m] of ply @p p in the fabric's plane along x (@p d
+       * = 0) or along z (@p d = 2): p ply_offset_x or p ply_offset_z
+       * (exactly 0 for ply 0). */
+      double
+      ply_shift(const unsigned int p, const unsigned int d) const
+      {
+        return p == 0 ? 0. : p * (d == 0 ? g.ply_offset_x : g.ply_offset_z);
+      }
+
       /** Whether the yarn @p id is a warp yarn (along x). */
       bool
       is_warp(const unsigned int id) const
@@ -217,11 +232,13 @@ namespace YarnImpact
       }
 
       /** The position [m] of yarn @p id across its axis in the fabric's
-       * plane: z_i of warp i, x_j of weft j. */
+       * plane: z_i of warp i, x_j of weft j, with its ply's shift. */
       double
       position(const unsigned int id) const
       {
-        return offset[id % yarns_per_ply()];
+        const double o     = offset[id % yarns_per_ply()];
+        const double shift = ply_shift(ply(id), is_warp(id) ? 2 : 0);
+        return shift == 0. ? o : o + shift;
       }
 
       /** The section [-] of yarn @p id through the reference point @p X
