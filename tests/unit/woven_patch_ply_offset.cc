@@ -11,8 +11,9 @@
 //   (section_of), the same height across it (section_radius) within
 //   1e-12, and the same fibre direction within 1e-12;
 // - every yarn's position across its axis (by which the primary yarns,
-//   under the projectile, are found) is the aligned one plus its ply's
-//   shift: p 0.5 mm for a weft yarn (along x), p 0.25 mm for a warp yarn;
+//   under the projectile, are found) is the stack's geometry within
+//   1e-18 m: ply p's warp i at z = (i - (n_warp - 1) / 2) s + p 0.25 mm,
+//   its weft j at x = (j - (n_weft - 1) / 2) s + p 0.5 mm;
 // - shifted plies with a symmetry plane are refused.
 
 #include <yarn_impact/fabric/woven_patch.h>
@@ -124,20 +125,21 @@ main()
               yes_no[yarn_differs == 0 && section_differs == 0 &&
                      radius_error <= 1e-12 && direction_error <= 1e-12]);
 
-  // The weft yarns' positions across the cylinder's axis, per ply.
+  // Every yarn's position across its axis against the stack's geometry.
   bool positions = true;
   for (unsigned int id = 0; id < shifted_patch.n_yarns(); ++id)
     {
       const unsigned int p = shifted_patch.ply(id);
+      const bool warp      = shifted_patch.is_warp(id);
+      const double n       = warp ? g.n_warp : g.n_weft;
       const double expected =
-        aligned_patch.position(id) + p * (shifted_patch.is_warp(id)
-                                            ? shifted.ply_offset_z
-                                            : shifted.ply_offset_x);
+        (shifted_patch.index_in_family(id) - 0.5 * (n - 1.)) * g.spacing +
+        p * (warp ? shifted.ply_offset_z : shifted.ply_offset_x);
       positions =
         positions && std::abs(shifted_patch.position(id) - expected) <= 1e-18;
     }
-  std::printf("  every yarn's position across its axis its aligned one plus "
-              "its ply's shift: %s\n",
+  std::printf("  every yarn's position across its axis that of the stack's "
+              "geometry, its ply's shift included: %s\n",
               yes_no[positions]);
 
   // A symmetry plane with shifted plies.

@@ -40,6 +40,20 @@ namespace
 {
   const double density = 1440.; // [kg/m^3]
 
+  /** The surface of @p mesh that the fabric's yarn contact takes, with
+   * the free ends (@p with_free_ends) or, as before them, of the lateral
+   * faces alone. */
+  Fabric::ContactSurface
+  surface(const dealii::Triangulation<3> &mesh, const bool with_free_ends)
+  {
+    return Fabric::make_contact_surface(mesh,
+                                        density,
+                                        with_free_ends
+                                          ? Fabric::yarn_contact_boundary_ids()
+                                          : std::set<unsigned int>{
+                                              Fabric::BoundaryIds::lateral});
+  }
+
   /** For each yarn of @p s: the directed edges of its faces met other
    * than exactly once with their reverse once (0 for a closed surface),
    * and the nodes of the edges met once, the open rim. */
@@ -110,13 +124,7 @@ main(int argc, char **argv)
                 clamped.size());
     for (const bool with_free_ends : {true, false})
       {
-        const auto s =
-          Fabric::make_contact_surface(mesh,
-                                       density,
-                                       with_free_ends
-                                         ? Fabric::yarn_contact_boundary_ids()
-                                         : std::set<unsigned int>{
-                                             Fabric::BoundaryIds::lateral});
+        const auto s = surface(mesh, with_free_ends);
         std::printf("  %s: %zu faces\n",
                     with_free_ends ? "yarn_contact_boundary_ids()"
                                    : "lateral faces only",
@@ -190,13 +198,7 @@ main(int argc, char **argv)
                 N);
     for (const bool with_free_ends : {true, false})
       {
-        const auto s =
-          Fabric::make_contact_surface(both,
-                                       density,
-                                       with_free_ends
-                                         ? Fabric::yarn_contact_boundary_ids()
-                                         : std::set<unsigned int>{
-                                             Fabric::BoundaryIds::lateral});
+        const auto s = surface(both, with_free_ends);
         std::vector<unsigned int> owned(s.n_nodes());
         std::iota(owned.begin(), owned.end(), 0);
         Fabric::YarnContact contact(prm, s, owned, MPI_COMM_SELF);
