@@ -44,6 +44,7 @@ namespace YarnImpact
           std::unique_ptr<YarnImpact::Parameters::Shared> &&shared_copy,
           const FE::Parameters &fe_parameters,
           std::shared_ptr<const YarnContactForces> yarn_contact,
+          std::shared_ptr<ClampGrip> clamp_grip,
           const double yarn_length,
           const std::string &primary,
           const std::string &plies,
@@ -55,6 +56,7 @@ namespace YarnImpact
           : shared(std::move(shared_copy))
           , fe(FE::create_model(*shared, fe_parameters, communicator))
           , yarn_contact(std::move(yarn_contact))
+          , clamp_grip(std::move(clamp_grip))
           , yarn_length(yarn_length)
           , primary(primary)
           , plies(plies)
@@ -63,7 +65,11 @@ namespace YarnImpact
           , spacing(spacing)
           , timer(std::move(timer))
           , communicator(communicator)
-        {}
+        {
+          // The grip's default stiffness is the yarn's: its law's modulus.
+          if (this->clamp_grip)
+            this->clamp_grip->set_axial_modulus(fe->axial_properties().modulus);
+        }
 
         std::string
         name() const override
@@ -175,6 +181,13 @@ namespace YarnImpact
             }
           for (unsigned int i = 0; n_plies > 1 && i < fronts.size(); ++i)
             o.extra_columns.push_back(1e3 * fronts[i]);
+          if (clamp_grip)
+            {
+              o.extra_columns.push_back(1e3 * clamp_grip->largest_slip());
+              o.extra_columns.push_back(clamp_grip->n_slipping_ends());
+              o.extra_columns.push_back(1e3 * clamp_grip->energy());
+              o.extra_columns.push_back(1e3 * clamp_grip->dissipated());
+            }
           return o;
         }
         /** The yarns' momentum along the impact direction, which with the
@@ -189,7 +202,11 @@ namespace YarnImpact
          * those with a section whose every cell has failed or been
          * eroded; with several plies, each ply's kinetic and strain
          * energies [mJ], then each ply's cone fronts [mm], of which the
-         * fabric's are the farthest. */
+         * fabric's are the farthest; with a grip of finite force, the
+         * largest slip of a node in its clamp [mm], the yarn ends that
+         * slip [-], the grip's stored energy and its dissipation [mJ]
+         * (inside the contact and dissipated energies of the common
+         * columns). */
         std::vector<std::string>
         extra_column_names() const override
         {
@@ -213,6 +230,12 @@ namespace YarnImpact
             for (const char *d : {"warp", "weft", "diagonal"})
               names.push_back("ply " + std::to_string(p) +
                               " cone front along " + d + " [mm]");
+          if (clamp_grip)
+            for (const char *name : {"clamp slip [mm]",
+                                     "slipping yarn ends",
+                                     "clamp grip energy [mJ]",
+                                     "clamp grip dissipated energy [mJ]"})
+              names.push_back(name);
           return names;
         }
         /** The FE's, with the area of one yarn's section: the patch's mass
@@ -267,13 +290,22 @@ namespace YarnImpact
         {
           fe->load_state(in);
         }
-        /** The yarn contact's (YarnContactForces::remarks()), with the
-         * step's parts (StepTimer::report()) under `Fabric/Step
-         * timing`. */
+        /** The yarn contact's (YarnContactForces::remarks()), the
+         * clamps' slip with a grip of finite force, with the step's parts
+         * (StepTimer::report()) under `Fabric/Step timing`. */
         std::string
         remarks() const override
         {
           std::string s = yarn_contact->remarks();
+          if (clamp_grip)
+            {
+              std::ostringstream grip;
+              grip << "\nclamp grip: " << clamp_grip->n_slipping_ends()
+                   << " yarn ends slipped, the largest slip "
+                   << 1e3 * clamp_grip->largest_slip() << " mm; dissipated "
+                   << 1e3 * clamp_grip->dissipated() << " mJ";
+              s += grip.str();
+            }
           if (timer->enabled)
             s += "\n" + timer->report(communicator);
           return s;
@@ -284,6 +316,8 @@ namespace YarnImpact
         const std::unique_ptr<YarnImpact::Parameters::Shared> shared;
         const std::unique_ptr<ImpactModel> fe;
         const std::shared_ptr<const YarnContactForces> yarn_contact;
+        /** The clamps' grip; null where the clamps are rigid. */
+        const std::shared_ptr<ClampGrip> clamp_grip;
         const double yarn_length;
         /** The primary yarns' ids and the plies' heights, for the set-up
          * report. */
@@ -341,6 +375,22 @@ namespace YarnImpact
           yarn_length = use_mesh_file(file, shared.projectile, p, ids);
         }
 
+      // A grip of finite force holds the clamped ends instead of the FE
+      // model's clamps: their faces get the gripped ends' id.
+      const bool grip = fabric.grip.pull_out_force > 0.;
+      if (grip)
+        {
+          p.mesh.outside_projectile_contact = {gripped_end_boundary_id};
+          p.mesh.create                     = [create =
+                             p.mesh.create](dealii::Triangulation<3> &mesh) {
+            create(mesh);
+            for (const auto &face : mesh.active_face_iterators())
+              if (face->at_boundary() &&
+                  face->boundary_id() == BoundaryIds::end)
+                face->set_boundary_id(gripped_end_boundary_id);
+          };
+        }
+
       // The surface of the whole mesh, before the FE model distributes it.
       dealii::Triangulation<3> whole;
       p.mesh.create(whole);
@@ -355,12 +405,30 @@ namespace YarnImpact
         timer,
         YarnImpact::Parameters::symmetry_factor(shared.general.symmetry),
         g.n_plies,
-        g.n_warp + g.n_weft);
-      p.extra_forces = yarn_contact;
+        [patch, file = !fabric.mesh_file.empty()](const unsigned int id) {
+          return file ? 0u : patch->ply(id);
+        });
+      p.extra_forces = {yarn_contact};
+      std::shared_ptr<ClampGrip> clamp_grip;
+      if (grip)
+        {
+          ClampGripParameters c = fabric.grip;
+          c.mirror_x            = g.mirror_x;
+          c.mirror_z            = g.mirror_z;
+          clamp_grip =
+            std::make_shared<ClampGrip>(c,
+                                        whole,
+                                        gripped_end_boundary_id,
+                                        density,
+                                        YarnImpact::Parameters::symmetry_factor(
+                                          shared.general.symmetry));
+          p.extra_forces.push_back(clamp_grip);
+        }
 
       return std::make_unique<FabricModel>(std::move(copy),
                                            p,
                                            yarn_contact,
+                                           clamp_grip,
                                            yarn_length,
                                            ids,
                                            plies,

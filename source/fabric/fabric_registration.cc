@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace YarnImpact
 {
@@ -138,6 +139,25 @@ namespace YarnImpact
             "the projectile contact; integration; stable step; observables; "
             "output) and add their table to the run's summary; only clocks "
             "are read, the history is the same [-].");
+          prm.enter_subsection("Clamp grip");
+          prm.declare_entry(
+            "Pull-out force",
+            "0",
+            Double(0.),
+            "Force at which a clamped yarn end slips in its clamp: the "
+            "clamp holds each node of the end section by a spring capped "
+            "by Coulomb's law, this force shared by the nodes' areas "
+            "(doc/fabric.md section 11). 0: the clamps hold the ends "
+            "rigidly [N].");
+          prm.declare_entry(
+            "Stiffness",
+            "0",
+            Double(0.),
+            "Stiffness of the grip of one yarn end before it slips, with "
+            "Pull-out force > 0. 0: the axial stiffness E A / h of the "
+            "yarn's end cell (E the law's axial modulus, A the section's "
+            "area, h the cell's length) [N/m].");
+          prm.leave_subsection();
           prm.enter_subsection("Yarn contact");
           prm.declare_entry("Penalty",
                             "5e13",
@@ -199,6 +219,10 @@ namespace YarnImpact
           fabric.mesh_file        = prm.get("Mesh file");
           fabric.orientation_file = prm.get("Orientation file");
           fabric.step_timing      = prm.get_bool("Step timing");
+          prm.enter_subsection("Clamp grip");
+          fabric.grip.pull_out_force = prm.get_double("Pull-out force");
+          fabric.grip.stiffness      = prm.get_double("Stiffness");
+          prm.leave_subsection();
           prm.enter_subsection("Yarn contact");
           YarnContactParameters &c = fabric.contact;
           c.penalty =
@@ -243,6 +267,12 @@ namespace YarnImpact
                   require(false, e.parameter, e.what());
                 }
             }
+          require(fabric.grip.pull_out_force == 0. ||
+                    !fabric.mesh_file.empty() || p.clamp_warp_ends ||
+                    p.clamp_weft_ends,
+                  "Fabric/Clamp grip/Pull-out force",
+                  "grips the clamped yarn ends, and Fabric/Clamped edges = "
+                  "none clamps none: set it to 0 or clamp some edges");
           std::ostringstream touch;
           touch << "= " << p.amplitude * 1e3
                 << " mm must exceed the yarn's thickness semi-axis "
@@ -408,14 +438,13 @@ namespace YarnImpact
                   "Symmetry",
                   "must be none with Fabric/Mesh file: only the generated "
                   "patch is cut by symmetry planes");
-          require(p.n_plies == 1 || p.ply_offset_x == 0.,
-                  "Fabric/Ply offset x",
-                  "must be 0 with Symmetry = half or quarter: plies shifted "
-                  "in the fabric's plane are not mirror-symmetric");
-          require(p.n_plies == 1 || p.ply_offset_z == 0.,
-                  "Fabric/Ply offset z",
-                  "must be 0 with Symmetry = half or quarter: plies shifted "
-                  "in the fabric's plane are not mirror-symmetric");
+          for (const auto &[offset, name] :
+               {std::pair(p.ply_offset_x, "Fabric/Ply offset x"),
+                std::pair(p.ply_offset_z, "Fabric/Ply offset z")})
+            require(p.n_plies == 1 || offset == 0.,
+                    name,
+                    "must be 0 with Symmetry = half or quarter: plies "
+                    "shifted in the fabric's plane are not mirror-symmetric");
           require(p.n_weft % 2 == 1,
                   "Fabric/Weft yarns",
                   "must be odd with Symmetry = half or quarter: the plane "

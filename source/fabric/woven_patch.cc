@@ -146,13 +146,13 @@ namespace YarnImpact
       // rotation, so that the cells keep their orientation). Both
       // shifted up by their ply's depth and back along themselves by
       // their ply's shift in the plane (ply 0's coordinates untouched,
-      // bit for bit; position() holds the shift across).
+      // bit for bit: its shifts are +0; position() holds the shift
+      // across).
       const unsigned int p = ply(id);
-      const double y       = p == 0 ? X[1] : X[1] - ply_height(p);
+      const double y       = X[1] - ply_height(p);
       const double o       = position(id);
-      return is_warp(id)
-               ? Point<3>(p == 0 ? X[0] : X[0] - ply_shift(p, 0), y, X[2] - o)
-               : Point<3>(p == 0 ? X[2] : X[2] - ply_shift(p, 2), y, o - X[0]);
+      return is_warp(id) ? Point<3>(X[0] - ply_shift(p, 0), y, X[2] - o)
+                         : Point<3>(X[2] - ply_shift(p, 2), y, o - X[0]);
     }
 
 
@@ -209,8 +209,8 @@ namespace YarnImpact
           std::clamp(std::round(offset + 0.5 * (n - 1.)), 0., n - 1.));
       };
       const unsigned int q = static_cast<unsigned int>(p);
-      const double x       = q == 0 ? X[0] : X[0] - ply_shift(q, 0);
-      const double z       = q == 0 ? X[2] : X[2] - ply_shift(q, 2);
+      const double x       = X[0] - ply_shift(q, 0);
+      const double z       = X[2] - ply_shift(q, 2);
       const double a_z2    = g.width_semi_axis * g.width_semi_axis;
       const double bound   = std::min(
         section_radius(first + nearest(z / g.spacing, g.n_warp), X),

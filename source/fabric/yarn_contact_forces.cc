@@ -20,13 +20,13 @@ namespace YarnImpact
       std::shared_ptr<StepTimer> timer,
       const double symmetry,
       const unsigned int n_plies,
-      const unsigned int yarns_per_ply)
+      std::function<unsigned int(unsigned int)> ply_of_yarn)
       : parameters(parameters)
       , surface(std::move(surface))
       , timer(std::move(timer))
       , symmetry(symmetry)
       , n_plies(n_plies)
-      , yarns_per_ply(yarns_per_ply)
+      , ply_of_yarn(std::move(ply_of_yarn))
     {}
 
     std::vector<unsigned int>
@@ -63,8 +63,7 @@ namespace YarnImpact
         {
           for (unsigned int d = 0; d < 3; ++d)
             node_reference.push_back(surface.reference[n][d]);
-          node_ply.push_back(
-            std::min(surface.node_yarn[n] / yarns_per_ply, n_plies - 1));
+          node_ply.push_back(ply_of_yarn(surface.node_yarn[n]));
         }
       return nodes;
     }

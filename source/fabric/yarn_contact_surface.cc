@@ -1,7 +1,6 @@
 // The surface of the yarn-yarn contact and its candidate search
 // (doc/fe-model.md section 8.4).
 
-#include <yarn_impact/fabric/woven_patch.h>
 #include <yarn_impact/fabric/yarn_contact.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -19,13 +18,6 @@ namespace YarnImpact
 {
   namespace Fabric
   {
-    std::set<unsigned int>
-    yarn_contact_boundary_ids()
-    {
-      return {BoundaryIds::lateral, free_end_boundary_id};
-    }
-
-
     ContactSurface
     make_contact_surface(const dealii::Triangulation<3, 3> &mesh,
                          const double density,

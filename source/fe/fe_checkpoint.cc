@@ -59,11 +59,10 @@ namespace YarnImpact
       out.tag("fe energies");
       out.put(projectile_speed);
       contact.save(out);
-      if (parameters.extra_forces)
-        {
-          out.tag("fe extra forces");
-          parameters.extra_forces->save(out);
-        }
+      if (!parameters.extra_forces.empty())
+        out.tag("fe extra forces");
+      for (const auto &forces : parameters.extra_forces)
+        forces->save(out);
     }
 
 
@@ -91,11 +90,10 @@ namespace YarnImpact
       in.tag("fe energies");
       in.get(projectile_speed);
       contact.load(in);
-      if (parameters.extra_forces)
-        {
-          in.tag("fe extra forces");
-          parameters.extra_forces->load(in);
-        }
+      if (!parameters.extra_forces.empty())
+        in.tag("fe extra forces");
+      for (const auto &forces : parameters.extra_forces)
+        forces->load(in);
     }
 
 

@@ -114,9 +114,9 @@ namespace YarnImpact
                        1. / (contact_time_step * contact_time_step));
       // The extra forces' springs act on the same nodes: their squared
       // frequencies add.
-      if (parameters.extra_forces)
+      for (const auto &forces : parameters.extra_forces)
         {
-          const double dt_extra = parameters.extra_forces->stable_time_step();
+          const double dt_extra = forces->stable_time_step();
           dt_waves              = 1. / std::sqrt(1. / (dt_waves * dt_waves) +
                                     1. / (dt_extra * dt_extra));
         }
@@ -156,8 +156,7 @@ namespace YarnImpact
                          velocity,
                          force,
                          dt);
-      if (parameters.extra_forces)
-        add_extra_forces(dt);
+      add_extra_forces(dt);
       ReproducibleSum reaction(1);
       contact.add_reactions(reaction, 0);
       return symmetry * reaction.sum(communicator)[0];
@@ -168,19 +167,23 @@ namespace YarnImpact
     void
     YarnModel<Law>::add_extra_forces(const double dt)
     {
-      for (unsigned int k = 0; k < extra_nodes.size(); ++k)
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            const unsigned int i = nodes[extra_nodes[k]][d];
-            extra_x[3 * k + d] =
-              reference_coordinate[i] + displacement.local_element(i);
-            extra_v[3 * k + d] = velocity.local_element(i);
-          }
-      std::fill(extra_f.begin(), extra_f.end(), 0.);
-      parameters.extra_forces->add_forces(extra_x, extra_v, dt, extra_f);
-      for (unsigned int k = 0; k < extra_nodes.size(); ++k)
-        for (unsigned int d = 0; d < 3; ++d)
-          force.local_element(nodes[extra_nodes[k]][d]) += extra_f[3 * k + d];
+      for (unsigned int s = 0; s < extra.size(); ++s)
+        {
+          ExtraNodes &e = extra[s];
+          for (unsigned int k = 0; k < e.nodes.size(); ++k)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                const unsigned int i = nodes[e.nodes[k]][d];
+                e.x[3 * k + d] =
+                  reference_coordinate[i] + displacement.local_element(i);
+                e.v[3 * k + d] = velocity.local_element(i);
+              }
+          std::fill(e.f.begin(), e.f.end(), 0.);
+          parameters.extra_forces[s]->add_forces(e.x, e.v, dt, e.f);
+          for (unsigned int k = 0; k < e.nodes.size(); ++k)
+            for (unsigned int d = 0; d < 3; ++d)
+              force.local_element(nodes[e.nodes[k]][d]) += e.f[3 * k + d];
+        }
     }
 
 

@@ -234,10 +234,10 @@ namespace YarnImpact
             }
         }
       // The extra forces' energy and dissipation are the whole model's.
-      if (parameters.extra_forces)
+      for (const auto &forces : parameters.extra_forces)
         {
-          o.contact_energy += parameters.extra_forces->energy();
-          o.dissipated_energy += parameters.extra_forces->dissipated();
+          o.contact_energy += forces->energy();
+          o.dissipated_energy += forces->dissipated();
         }
 
       const bool quarter =

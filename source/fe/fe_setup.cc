@@ -55,8 +55,8 @@ namespace YarnImpact
       else
         out << "[fe] no projectile contact on the surface (the coupling's "
                "fibres touch the projectile)\n";
-      if (parameters.extra_forces)
-        out << parameters.extra_forces->report();
+      for (const auto &extra : parameters.extra_forces)
+        out << extra->report();
     }
 
 
@@ -425,8 +425,14 @@ namespace YarnImpact
       const double tol = 1e-6 * station_spacing;
       std::vector<bool> seen(reference_coordinate.size(), false);
       // A given mesh says where its clamps are (GivenMesh).
-      const std::vector<bool> clamped =
-        parameters.mesh.given() ? clamped_dofs() : std::vector<bool>();
+      const std::vector<bool> clamped = parameters.mesh.given()
+                                          ? dofs_on_faces({BoundaryIds::clamp})
+                                          : std::vector<bool>();
+      // Nodes in a clamp's grip: the projectile would strike the clamp.
+      const std::vector<bool> gripped =
+        parameters.mesh.given()
+          ? dofs_on_faces(parameters.mesh.outside_projectile_contact)
+          : std::vector<bool>();
       for (const unsigned int c : owned_cells)
         for (unsigned int a = 0; a < n_nodes; ++a)
           {
@@ -462,7 +468,8 @@ namespace YarnImpact
                 fixed[d] ? 0. : 1. / lumped_mass.local_element(node[d]);
 
             const double node_area = area.local_element(node[0]);
-            if (node_area > 0. && !fixed[1] && parameters.projectile_contact)
+            if (node_area > 0. && !fixed[1] && parameters.projectile_contact &&
+                (gripped.empty() || !gripped[node[0]]))
               contact.add_node(node,
                                node_area,
                                lumped_mass.local_element(node[0]));
@@ -485,8 +492,7 @@ namespace YarnImpact
       top = Utilities::MPI::max(local_top, communicator);
 
       contact_time_step = contact.stable_time_step(communicator);
-      if (parameters.extra_forces)
-        setup_extra_forces();
+      setup_extra_forces();
 
       displacement = 0.;
       velocity     = 0.;
@@ -503,21 +509,21 @@ namespace YarnImpact
 
     template <class Law>
     std::vector<bool>
-    YarnModel<Law>::clamped_dofs() const
+    YarnModel<Law>::dofs_on_faces(const std::set<unsigned int> &ids) const
     {
       // The owned and ghost cells hold every face that touches an owned
       // node (setup_cells()).
       const auto &partitioner = displacement.get_partitioner();
-      std::vector<bool> clamped(reference_coordinate.size(), false);
+      std::vector<bool> on(reference_coordinate.size(), false);
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned() || cell->is_ghost())
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() == BoundaryIds::clamp)
+                ids.count(cell->face(f)->boundary_id()) > 0)
               for (const unsigned int v : cell->face(f)->vertex_indices())
-                clamped[partitioner->global_to_local(
+                on[partitioner->global_to_local(
                   cell->face(f)->vertex_dof_index(v, 0))] = true;
-      return clamped;
+      return on;
     }
 
 
@@ -529,10 +535,16 @@ namespace YarnImpact
       for (unsigned int k = 0; k < nodes.size(); ++k)
         for (unsigned int d = 0; d < 3; ++d)
           reference[3 * k + d] = reference_coordinate[nodes[k][d]];
-      extra_nodes = parameters.extra_forces->setup(reference, communicator);
-      extra_x.assign(3 * extra_nodes.size(), 0.);
-      extra_v.assign(3 * extra_nodes.size(), 0.);
-      extra_f.assign(3 * extra_nodes.size(), 0.);
+      extra.clear();
+      for (const auto &forces : parameters.extra_forces)
+        {
+          ExtraNodes e;
+          e.nodes = forces->setup(reference, communicator);
+          e.x.assign(3 * e.nodes.size(), 0.);
+          e.v.assign(3 * e.nodes.size(), 0.);
+          e.f.assign(3 * e.nodes.size(), 0.);
+          extra.push_back(std::move(e));
+        }
     }
 
 

@@ -308,13 +308,14 @@ namespace YarnImpact
       setup_nodes(const VectorType &area);
 
       /** For setup_nodes() on a given mesh (GivenMesh): whether each local
-       * dof lies on a face of BoundaryIds::clamp, on its x dof. */
+       * dof lies on a boundary face of one of the boundary ids @p ids, on
+       * its x dof. */
       std::vector<bool>
-      clamped_dofs() const;
+      dofs_on_faces(const std::set<unsigned int> &ids) const;
 
-      /** For setup_initial_state(): the owned nodes that the extra forces
-       * (FE::Parameters::extra_forces) act on, from their reference
-       * positions. */
+      /** For setup_initial_state(): the owned nodes that each set of extra
+       * forces (FE::Parameters::extra_forces) acts on, from their
+       * reference positions. */
       void
       setup_extra_forces();
 
@@ -394,10 +395,16 @@ namespace YarnImpact
       std::vector<unsigned int> node_station;
       /** The projectile contact of the owned surface nodes. */
       ProjectileContact contact;
-      /** The owned nodes (indices into `nodes`) of the extra forces, and
-       * their positions [m], velocities [m/s] and forces [N], 3 each. */
-      std::vector<unsigned int> extra_nodes;
-      std::vector<double> extra_x, extra_v, extra_f;
+      /** The owned nodes (indices into `nodes`) of one set of extra
+       * forces, and their positions [m], velocities [m/s] and forces [N],
+       * 3 each. */
+      struct ExtraNodes
+      {
+        std::vector<unsigned int> nodes;
+        std::vector<double> x, v, f;
+      };
+      /** Those of each of FE::Parameters::extra_forces, in its order. */
+      std::vector<ExtraNodes> extra;
       /** On a given mesh: each cell's mean fibre direction [-], for the
        * snapshots. */
       std::vector<std::array<double, 3>> cell_fibre;

@@ -59,6 +59,20 @@
 #               uninterrupted run's; the same for the 3 x 3 patch struck by
 #               the sphere, no failure, stopped at 1.25 us with tied yarn
 #               contacts (1 rank).
+#  grip         4 x 4 yarns, no failure, 2.5 us, the clamps' finite grip
+#               (Fabric/Clamp grip): the rigid clamps against grips of
+#               1e6 N that never slip, of stiffness 3e8 and 3e9 N/m
+#               (check_grip.py stiff); the 3 x 3 patch struck by the
+#               sphere with a grip of 2 N, whole, half and quarter
+#               (check_grip.py symmetric); a grip of 2 N a yarn end, the
+#               default stiffness, a history row every step, on 1 and 2
+#               ranks: the checks of energy (check_history.py energy) with
+#               the grip's energy and dissipation inside the contact and
+#               dissipated columns, the slip against the rigid clamps
+#               (check_grip.py slipping), the two histories byte for byte
+#               the same; the same grip stopped by SIGTERM at row 15
+#               (1.5 us, the ends slipping) and continued with --restart:
+#               the history byte for byte the uninterrupted run's.
 #  single_warp  1 warp yarn across 5 weft yarns against Model = fe with
 #               the same crimped yarn (check_history.py single_warp).
 #  mesh_file    (needs WRITE_PATCH_MESH) the 4 x 4 patch, no failure, 3 us,
@@ -279,6 +293,49 @@ case $case in
     histories_agree tie_ref/history_fabric.csv tie_cut/history_fabric.csv \
       "restart with tied contacts: the history is the uninterrupted run's, byte for byte" \
       "restart with tied contacts: the history differs from the uninterrupted run's"
+    ;;
+  grip)
+    grip() {
+      printf 'subsection Fabric\n  subsection Clamp grip\n'
+      printf '    set Pull-out force = %s\n    set Stiffness = %s\n' "$1" "$2"
+      printf '  end\nend\n'
+    }
+    patch rigid 4 4 2.5e-6 0.05e-6 "$no_failure" > rigid.prm
+    patch soft 4 4 2.5e-6 0.05e-6 "$no_failure$(grip 1e6 3e8)" > soft.prm
+    patch hard 4 4 2.5e-6 0.05e-6 "$no_failure$(grip 1e6 3e9)" > hard.prm
+    for c in rigid soft hard; do
+      run 1 $c.prm
+      [ "$rc" -eq 0 ] || fail "$c: exit $rc: $(head -c 300 stderr)"
+    done
+    /usr/bin/python3 "$here/check_grip.py" stiff rigid soft hard || failures=$((failures + 1))
+    sphere='subsection Projectile\n  set Shape = sphere\nend\n'
+    for s in none half quarter; do
+      patch "sym_$s" 3 3 2.5e-6 0.1e-6 "set Symmetry = $s\n$no_failure$sphere$(grip 2 0)" > "sym_$s.prm"
+      run 1 "sym_$s.prm"
+      [ "$rc" -eq 0 ] || fail "grip, symmetry $s: exit $rc: $(head -c 300 stderr)"
+    done
+    /usr/bin/python3 "$here/check_grip.py" symmetric sym_none sym_half sym_quarter || failures=$((failures + 1))
+    for n in 1 2; do
+      patch "slip_$n" 4 4 2.5e-6 1e-9 "$no_failure$(grip 2 0)" > "slip_$n.prm"
+      run $n "slip_$n.prm"
+      [ "$rc" -eq 0 ] || fail "slipping grip on $n ranks: exit $rc: $(head -c 300 stderr)"
+    done
+    /usr/bin/python3 "$here/check_history.py" energy slip_1 || failures=$((failures + 1))
+    /usr/bin/python3 "$here/check_grip.py" slipping slip_1 rigid || failures=$((failures + 1))
+    histories_agree slip_1/history_fabric.csv slip_2/history_fabric.csv \
+      "slipping grip: the history on 2 ranks is the one on 1, byte for byte" \
+      "slipping grip: the history on 2 ranks differs from the one on 1"
+    patch grip_ref 4 4 2.5e-6 0.1e-6 "$no_failure$(grip 2 0)" > grip_ref.prm
+    patch grip_cut 4 4 2.5e-6 0.1e-6 "$no_failure$(grip 2 0)" > grip_cut.prm
+    run 1 grip_ref.prm
+    [ "$rc" -eq 0 ] || fail "grip reference: exit $rc: $(head -c 300 stderr)"
+    YARN_IMPACT_SIGNAL_AT_ROW=15 run 1 grip_cut.prm
+    [ "$rc" -eq 6 ] || fail "grip stop: expected exit 6, got $rc: $(head -c 300 stderr)"
+    run 1 --restart grip_cut.prm
+    [ "$rc" -eq 0 ] || fail "grip restart: exit $rc: $(head -c 300 stderr)"
+    histories_agree grip_ref/history_fabric.csv grip_cut/history_fabric.csv \
+      "restart with a slipping grip: the history is the uninterrupted run's, byte for byte" \
+      "restart with a slipping grip: the history differs from the uninterrupted run's"
     ;;
   single_warp)
     patch fabric 1 5 0.5e-6 0.01e-6 "$no_failure" > fabric.prm

@@ -3,6 +3,7 @@
 
 #include <yarn_impact/core/impact_model.h>
 #include <yarn_impact/core/parameters.h>
+#include <yarn_impact/fabric/clamp_grip.h>
 #include <yarn_impact/fabric/woven_patch.h>
 #include <yarn_impact/fabric/yarn_contact.h>
 #include <yarn_impact/fe/parameters.h>
@@ -25,6 +26,9 @@ namespace YarnImpact
       /** The contact of crossing yarns (subsection `Fabric/Yarn
        * contact`). */
       YarnContactParameters contact;
+      /** The clamps' grip (subsection `Fabric/Clamp grip`); a pull-out
+       * force of 0 clamps the ends rigidly. */
+      ClampGripParameters grip;
       /** The deflection (along -y) above which a point of the yarns'
        * surface is inside the cone, for the history's cone fronts [m]. */
       double cone_threshold = 10e-6;
@@ -47,7 +51,9 @@ namespace YarnImpact
      * ends clamped that WovenPatchGeometry::clamp_warp_ends and
      * clamp_weft_ends say, and the YarnContact of crossing yarns as its
      * extra forces (FE::ExtraForces), its surface made from the whole mesh
-     * on every rank; the energies of the yarns under the projectile's
+     * on every rank, and with a grip of finite force (@p fabric.grip)
+     * the ClampGrip of the clamped ends as its second extra forces; the
+     * energies of the yarns under the projectile's
      * footprint and of the others apart (FE::Parameters::energy_group).
      * The struck face is +y; the projectile strikes at
      * `Projectile/Impact offset x`, `z`. Its name is "fabric".

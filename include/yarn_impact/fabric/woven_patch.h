@@ -6,6 +6,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <set>
 #include <vector>
 
 namespace dealii
@@ -92,6 +93,31 @@ namespace YarnImpact
      * the FE model fixes the normal displacement of every node on the
      * plane by its position (doc/fabric.md section 10). */
     constexpr unsigned int symmetry_plane_boundary_id = 4;
+
+    /** The boundary id of the end sections of a clamped yarn held by a
+     * grip of finite force (ClampGrip; `Fabric/Clamp grip/Pull-out
+     * force` > 0), set on the faces of BoundaryIds::end by the fabric
+     * model: not BoundaryIds::end, so that the FE model clamps none of its
+     * nodes, which the grip's springs hold instead. */
+    constexpr unsigned int gripped_end_boundary_id = 5;
+
+    /**
+     * The boundary ids of a fabric's mesh (a WovenPatch's or a read
+     * mesh's, doc/fabric.md sections 2 and 8) whose faces the yarn contact
+     * acts on: the lateral faces (BoundaryIds::lateral) and the end
+     * sections that move, free (free_end_boundary_id) or in a grip that
+     * can slip (gripped_end_boundary_id), so that a moving end that meets
+     * another yarn touches it and the end of another yarn cannot pass
+     * through it. Not the rigidly clamped ends, which do not move, nor
+     * the faces on a symmetry plane, which are inside the whole patch.
+     */
+    inline std::set<unsigned int>
+    yarn_contact_boundary_ids()
+    {
+      return {BoundaryIds::lateral,
+              free_end_boundary_id,
+              gripped_end_boundary_id};
+    }
 
     /**
      * A plain-woven patch (doc/fe-model.md section 8.3): n_warp warp yarns

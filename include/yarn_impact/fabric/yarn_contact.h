@@ -71,19 +71,6 @@ namespace YarnImpact
                          const std::set<unsigned int> &boundary_ids = {});
 
 
-    /**
-     * The boundary ids of a fabric's mesh (a WovenPatch's or a read
-     * mesh's, doc/fabric.md sections 2 and 8) whose faces the yarn contact
-     * acts on: the lateral faces (BoundaryIds::lateral) and the free
-     * end sections (free_end_boundary_id), so that a free end that swings
-     * onto another yarn touches it, and the end of another yarn cannot
-     * pass through it. Not the clamped ends, which do not move, nor the
-     * faces on a symmetry plane, which are inside the whole patch.
-     */
-    std::set<unsigned int>
-    yarn_contact_boundary_ids();
-
-
     /** The yarn-yarn contact's constants [SI]. */
     struct YarnContactParameters
     {

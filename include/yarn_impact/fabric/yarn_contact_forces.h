@@ -5,6 +5,7 @@
 #include <yarn_impact/fabric/yarn_contact.h>
 #include <yarn_impact/fe/extra_forces.h>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -33,14 +34,15 @@ namespace YarnImpact
        * @param symmetry the whole patch over the meshed part [-]
        * (1, 2, 4), by which energy() and dissipated() scale the
        * contact's to the whole patch's, as the FE model scales its own
-       * @param n_plies the plies [-], ply p's yarns (material ids) the
-       * @p yarns_per_ply [-] from p yarns_per_ply on */
+       * @param n_plies the plies [-]
+       * @param ply_of_yarn the ply [-], below @p n_plies, of each yarn
+       * (material id) */
       YarnContactForces(const YarnContactParameters &parameters,
                         ContactSurface &&surface,
                         std::shared_ptr<StepTimer> timer,
                         const double symmetry,
                         const unsigned int n_plies,
-                        const unsigned int yarns_per_ply);
+                        std::function<unsigned int(unsigned int)> ply_of_yarn);
 
       std::vector<unsigned int>
       setup(const std::vector<double> &reference,
@@ -98,7 +100,8 @@ namespace YarnImpact
       const ContactSurface surface;
       const std::shared_ptr<StepTimer> timer;
       const double symmetry;
-      const unsigned int n_plies, yarns_per_ply;
+      const unsigned int n_plies;
+      const std::function<unsigned int(unsigned int)> ply_of_yarn;
       std::optional<YarnContact> contact;
       MPI_Comm communicator = MPI_COMM_SELF;
       /** The reference positions [m] of this rank's nodes, 3 each, in

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,6 +69,11 @@ namespace YarnImpact
        * argument. None by default. */
       std::vector<std::pair<std::string, std::function<double(unsigned int)>>>
         material_fields;
+      /** Boundary ids of faces whose nodes stay out of the projectile's
+       * contact, as the clamped nodes do: the ends held in a clamp by a
+       * grip of finite force (extra forces), where the projectile would
+       * strike the clamp. None by default. */
+      std::set<unsigned int> outside_projectile_contact;
 
       /** Whether a mesh is given. */
       bool
@@ -238,10 +244,11 @@ namespace YarnImpact
       /** Set by a model made of several yarns, never by a `.prm`: its
        * mesh (GivenMesh; none by default). */
       GivenMesh mesh;
-      /** Set by a model made of several yarns, never by a `.prm`: forces
-       * it adds on the FE nodes, with their energy, dissipation, stable
-       * step and checkpoint (ExtraForces). None by default. */
-      std::shared_ptr<ExtraForces> extra_forces;
+      /** Set by a model made of several yarns, never by a `.prm`: the
+       * sets of forces it adds on the FE nodes, each with its energy,
+       * dissipation, stable step and checkpoint (ExtraForces), in the
+       * order in which the FE model calls them. None by default. */
+      std::vector<std::shared_ptr<ExtraForces>> extra_forces;
       /** Set by a model made of several yarns, never by a `.prm`: the
        * group [-], below n_energy_groups, of the cells of each material
        * id, whose kinetic and strain energies Observables::
