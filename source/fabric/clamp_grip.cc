@@ -98,31 +98,12 @@ namespace YarnImpact
                      const MPI_Comm communicator)
     {
       this->communicator = communicator;
-      // The gripped nodes among this rank's, found by reference position:
-      // the FE model's mesh and this one are made by the same code, so
-      // that their vertices are equal bit for bit.
-      std::map<std::array<double, 3>, unsigned int> index;
-      for (unsigned int n = 0; n < reference.size(); ++n)
-        index.emplace(std::array<double, 3>{{reference[n][0],
-                                             reference[n][1],
-                                             reference[n][2]}},
-                      n);
-      std::vector<std::pair<unsigned int, unsigned int>> found;
-      for (unsigned int i = 0; 3 * i < x_reference.size(); ++i)
-        {
-          const auto it = index.find({{x_reference[3 * i],
-                                       x_reference[3 * i + 1],
-                                       x_reference[3 * i + 2]}});
-          if (it != index.end())
-            found.emplace_back(it->second, i);
-        }
-      std::sort(found.begin(), found.end());
       std::vector<unsigned int> nodes;
       owned.clear();
       k.clear();
       cap.clear();
       anchor.clear();
-      for (const auto &[n, i] : found)
+      for (const auto &[n, i] : match_surface_nodes(reference, x_reference))
         {
           owned.push_back(n);
           nodes.push_back(i);
@@ -245,22 +226,26 @@ namespace YarnImpact
 
 
     double
-    ClampGrip::energy() const
+    ClampGrip::whole_patch_sum(const std::vector<double> &terms) const
     {
       ReproducibleSum sum(1);
-      for (const double e : node_energy)
+      for (const double e : terms)
         sum.add(0, e);
       return symmetry * sum.sum(communicator)[0];
     }
 
 
     double
+    ClampGrip::energy() const
+    {
+      return whole_patch_sum(node_energy);
+    }
+
+
+    double
     ClampGrip::dissipated() const
     {
-      ReproducibleSum sum(1);
-      for (const double e : node_dissipated)
-        sum.add(0, e);
-      return symmetry * sum.sum(communicator)[0];
+      return whole_patch_sum(node_dissipated);
     }
 
 

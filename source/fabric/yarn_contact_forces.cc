@@ -4,9 +4,7 @@
 #include <yarn_impact/fabric/yarn_contact_forces.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <utility>
 
@@ -33,24 +31,8 @@ namespace YarnImpact
     YarnContactForces::setup(const std::vector<double> &reference,
                              const MPI_Comm communicator)
     {
-      std::map<std::array<double, 3>, unsigned int> index;
-      for (unsigned int n = 0; n < surface.n_nodes(); ++n)
-        index.emplace(std::array<double, 3>{{surface.reference[n][0],
-                                             surface.reference[n][1],
-                                             surface.reference[n][2]}},
-                      n);
-      // (surface node, FE node), in the surface's order.
-      std::vector<std::pair<unsigned int, unsigned int>> found;
-      for (unsigned int k = 0; 3 * k < reference.size(); ++k)
-        {
-          const auto it = index.find(
-            {{reference[3 * k], reference[3 * k + 1], reference[3 * k + 2]}});
-          if (it != index.end())
-            found.emplace_back(it->second, k);
-        }
-      std::sort(found.begin(), found.end());
       std::vector<unsigned int> owned, nodes;
-      for (const auto &f : found)
+      for (const auto &f : match_surface_nodes(surface.reference, reference))
         {
           owned.push_back(f.first);
           nodes.push_back(f.second);

@@ -10,6 +10,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -18,6 +19,29 @@ namespace YarnImpact
 {
   namespace Fabric
   {
+    std::vector<std::pair<unsigned int, unsigned int>>
+    match_surface_nodes(const std::vector<dealii::Point<3>> &surface,
+                        const std::vector<double> &fe_reference)
+    {
+      std::map<std::array<double, 3>, unsigned int> index;
+      for (unsigned int n = 0; n < surface.size(); ++n)
+        index.emplace(
+          std::array<double, 3>{{surface[n][0], surface[n][1], surface[n][2]}},
+          n);
+      std::vector<std::pair<unsigned int, unsigned int>> found;
+      for (unsigned int k = 0; 3 * k < fe_reference.size(); ++k)
+        {
+          const auto it = index.find({{fe_reference[3 * k],
+                                       fe_reference[3 * k + 1],
+                                       fe_reference[3 * k + 2]}});
+          if (it != index.end())
+            found.emplace_back(it->second, k);
+        }
+      std::sort(found.begin(), found.end());
+      return found;
+    }
+
+
     ContactSurface
     make_contact_surface(const dealii::Triangulation<3, 3> &mesh,
                          const double density,

@@ -135,6 +135,11 @@ namespace YarnImpact
        * add_forces() and the energy it dissipated so far [J]. */
       std::vector<double> node_energy, node_dissipated;
 
+      /** The sum over the ranks of this rank's nodes' @p terms [J],
+       * scaled to the whole patch; partition-independent. Collective. */
+      double
+      whole_patch_sum(const std::vector<double> &terms) const;
+
       /** The slip [m] of this rank's node @p i, |a - X|. */
       double
       anchor_slip(const unsigned int i) const;

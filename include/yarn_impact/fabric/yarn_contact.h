@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <set>
+#include <utility>
 #include <vector>
 
 namespace dealii
@@ -69,6 +70,20 @@ namespace YarnImpact
     make_contact_surface(const dealii::Triangulation<3, 3> &mesh,
                          const double density,
                          const std::set<unsigned int> &boundary_ids = {});
+
+
+    /**
+     * The nodes of a surface of the whole mesh (@p surface, reference
+     * positions [m]) that are among an FE model's nodes on this rank
+     * (@p fe_reference, their reference positions [m], 3 each), found by
+     * position: the two meshes are made by the same code, so that their
+     * vertices are equal bit for bit.
+     * @return (surface node, index into @p fe_reference's nodes) pairs in
+     * the surface's order
+     */
+    std::vector<std::pair<unsigned int, unsigned int>>
+    match_surface_nodes(const std::vector<dealii::Point<3>> &surface,
+                        const std::vector<double> &fe_reference);
 
 
     /** The yarn-yarn contact's constants [SI]. */
