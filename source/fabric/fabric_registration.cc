@@ -273,6 +273,12 @@ namespace YarnImpact
                   "Fabric/Clamp grip/Pull-out force",
                   "grips the clamped yarn ends, and Fabric/Clamped edges = "
                   "none clamps none: set it to 0 or clamp some edges");
+          require(fabric.grip.stiffness == 0. ||
+                    fabric.grip.pull_out_force > 0.,
+                  "Fabric/Clamp grip/Stiffness",
+                  "is the stiffness of a grip that can slip, and "
+                  "Fabric/Clamp grip/Pull-out force = 0 clamps the ends "
+                  "rigidly: set a pull-out force or leave it 0");
           std::ostringstream touch;
           touch << "= " << p.amplitude * 1e3
                 << " mm must exceed the yarn's thickness semi-axis "
