@@ -1,14 +1,17 @@
 #!/bin/bash
-# FE resolution study of the paper's case (issue 4): 1x, 2x, 4x refinement
-# along the axis and in the section, quarter model (the symmetry test shows
-# it gives the full model's history). Prints a markdown table of the
-# projectile velocity at 10, 20, 25 and 30 us, the first cell failure and
-# the cut-through time.
+# FE resolution study of the paper's case: 1x, 2x, 4x refinement along the
+# axis and in the section, quarter model (the symmetry test shows it gives
+# the full model's history). Prints a markdown table of the projectile
+# velocity at 10, 20, 25 and 30 us, the first cell failure and the
+# cut-through time, and writes the same as 'key: value' lines to
+# OUT_DIR/values.txt (aAXIAL_sSECTION_v_10us, ..._first_failure_us,
+# ..._cut_through_us: the registry's case fe_resolution).
 # Usage: scripts/fe_resolution_study.sh [BUILD_DIR] [OUT_DIR]
 set -uo pipefail
 build=${1:-build}
 out=${2:-results/fe_resolution}
 mkdir -p "$out"
+rm -f "$out/values.txt"
 printf '| cells along the axis | section refinements | cells (full yarn) | v(10 us) | v(20 us) | v(25 us) | v(30 us) | first failure [us] | cut through [us] | wall [s] |\n'
 printf '|---|---|---|---|---|---|---|---|---|---|\n'
 for axial in 100 200 400; do
@@ -47,6 +50,13 @@ except FileNotFoundError:  # a run stopped by an error writes no summary
     summary = False
 cells = 12 * 4 ** section * axial
 error = [l.split("yarn-impact: error: ", 1)[1].strip() for l in open(d + ".log") if "yarn-impact: error: " in l]
+key = f"a{axial}_s{section}_"
+with open(d.rsplit("/", 1)[0] + "/values.txt", "a") as f:
+    for t in (10, 20, 25, 30):
+        f.write(f"{key}v_{t}us: {v(t)!r}\n")
+    f.write(f"{key}first_failure_us: {fail if fail is not None else 'none'}\n")
+    f.write(f"{key}cut_through_us: {cut if cut is not None else ('no' if summary else 'stopped')}\n")
+    f.write(f"{key}wall_s: {wall:.0f}\n")
 print(f"| {axial} | {section} | {cells} | {v(10):.2f} | {v(20):.2f} | {v(25):.2f} | {v(30):.2f} | "
       f"{fail if fail is not None else 'none'} | {cut if cut is not None else ('no' if summary else '-')} | {wall:.0f} |"
       + (f" stopped: {error[0]}" if error else ""))

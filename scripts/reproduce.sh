@@ -181,7 +181,7 @@ done
 # doc/validation.md section 4: FE resolution, DEM contact stiffness and
 # friction (scripts/run_study.sh runs the same).
 add fe_resolution full "$CODE scripts/fe_resolution_study.sh" \
-  "summary:$out/fe_resolution.log" \
+  "summary:$out/fe_resolution/values.txt" \
   "bash scripts/fe_resolution_study.sh $build $out/fe_resolution"
 for run in dem_kn_low dem_no_friction; do
   add $run full "$CODE" "history:$out/$run" "$(mpi_run $run prm/study/$run.prm)"
