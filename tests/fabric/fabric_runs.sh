@@ -142,6 +142,22 @@ run() {
   rc=$?
 }
 
+# restarted REF CUT ROW WHAT: on 1 rank, REF.prm run to its end and
+# CUT.prm (the same case) stopped by SIGTERM at history row ROW and
+# continued with --restart; the two histories byte for byte, the checks
+# named "restart WHAT".
+restarted() {
+  run 1 "$1.prm"
+  [ "$rc" -eq 0 ] || fail "restart $4, reference: exit $rc: $(head -c 300 stderr)"
+  YARN_IMPACT_SIGNAL_AT_ROW=$3 run 1 "$2.prm"
+  [ "$rc" -eq 6 ] || fail "restart $4, stop: expected exit 6, got $rc: $(head -c 300 stderr)"
+  run 1 --restart "$2.prm"
+  [ "$rc" -eq 0 ] || fail "restart $4: exit $rc: $(head -c 300 stderr)"
+  histories_agree "$1/history_fabric.csv" "$2/history_fabric.csv" \
+    "restart $4: the history is the uninterrupted run's, byte for byte" \
+    "restart $4: the history differs from the uninterrupted run's"
+}
+
 no_failure='subsection Yarn\n  set Failure = false\nend\n'
 linear='subsection FE\n  set Constitutive law = Linear transversely isotropic\nend\nsubsection Yarn\n  set Failure model = sudden\nend\n'
 sudden='subsection Yarn\n  set Failure model = sudden\nend\n'
@@ -284,15 +300,7 @@ case $case in
     extra="${no_failure}subsection Projectile\n  set Shape = sphere\nend\n"
     patch tie_ref 3 3 1.6e-6 0.05e-6 "$extra" > tie_ref.prm
     patch tie_cut 3 3 1.6e-6 0.05e-6 "$extra" > tie_cut.prm
-    run 1 tie_ref.prm
-    [ "$rc" -eq 0 ] || fail "tied reference: exit $rc: $(head -c 300 stderr)"
-    YARN_IMPACT_SIGNAL_AT_ROW=25 run 1 tie_cut.prm
-    [ "$rc" -eq 6 ] || fail "tied stop: expected exit 6, got $rc: $(head -c 300 stderr)"
-    run 1 --restart tie_cut.prm
-    [ "$rc" -eq 0 ] || fail "tied restart: exit $rc: $(head -c 300 stderr)"
-    histories_agree tie_ref/history_fabric.csv tie_cut/history_fabric.csv \
-      "restart with tied contacts: the history is the uninterrupted run's, byte for byte" \
-      "restart with tied contacts: the history differs from the uninterrupted run's"
+    restarted tie_ref tie_cut 25 "with tied contacts"
     ;;
   grip)
     grip() {
@@ -327,15 +335,7 @@ case $case in
       "slipping grip: the history on 2 ranks differs from the one on 1"
     patch grip_ref 4 4 2.5e-6 0.1e-6 "$no_failure$(grip 2 0)" > grip_ref.prm
     patch grip_cut 4 4 2.5e-6 0.1e-6 "$no_failure$(grip 2 0)" > grip_cut.prm
-    run 1 grip_ref.prm
-    [ "$rc" -eq 0 ] || fail "grip reference: exit $rc: $(head -c 300 stderr)"
-    YARN_IMPACT_SIGNAL_AT_ROW=15 run 1 grip_cut.prm
-    [ "$rc" -eq 6 ] || fail "grip stop: expected exit 6, got $rc: $(head -c 300 stderr)"
-    run 1 --restart grip_cut.prm
-    [ "$rc" -eq 0 ] || fail "grip restart: exit $rc: $(head -c 300 stderr)"
-    histories_agree grip_ref/history_fabric.csv grip_cut/history_fabric.csv \
-      "restart with a slipping grip: the history is the uninterrupted run's, byte for byte" \
-      "restart with a slipping grip: the history differs from the uninterrupted run's"
+    restarted grip_ref grip_cut 15 "with a slipping grip"
     ;;
   single_warp)
     patch fabric 1 5 0.5e-6 0.01e-6 "$no_failure" > fabric.prm
