@@ -112,6 +112,16 @@ main(int argc, char **argv)
               << "before the timed steps: " << statistics_warm << "\n"
               << "after: " << statistics_end << "\n"
               << "projectile velocity " << projectile.impact_speed()
-              << " m/s, max strain " << obs.max_strain << "\n";
+              << " m/s, max strain " << obs.max_strain
+              << "\n"
+              // The same as "key: value" lines, for the registry of runs
+              // (scripts/registry.py, extractor summary).
+              << "modelled spheres: " << modelled << "\n"
+              << "timed steps: " << n_steps << "\n"
+              << "wall time of the timed steps [s]: " << wall << "\n"
+              << "M sphere-steps/s: " << modelled * double(n_steps) / wall / 1e6
+              << "\n"
+              << "peak memory per rank [MB]: " << memory_max << "\n"
+              << "peak memory, all ranks [MB]: " << memory_sum << "\n";
   return 0;
 }

@@ -50,4 +50,12 @@ for name, prm in (("dem", dem_prm), ("hybrid", hybrid_prm)):
     steps, wall, forces = rows[name]
     print(f"| {prm} | {steps} | {wall:.1f} | {forces:.1f} | {1e3 * wall / steps:.2f} |")
 print(f"hybrid / DEM wall time: {rows['hybrid'][1] / rows['dem'][1]:.2f}")
+# The same as "key: value" lines, for the registry of runs
+# (scripts/registry.py, extractor summary).
+for name in ("dem", "hybrid"):
+    steps, wall, forces = rows[name]
+    print(f"{name} steps: {steps}")
+    print(f"{name} wall [s]: {wall:.1f}")
+    print(f"{name} forces [s]: {forces:.1f}")
+    print(f"{name} per step [ms]: {1e3 * wall / steps:.2f}")
 END

@@ -203,10 +203,13 @@ add ballistic_sweep full "$CODE scripts/ballistic_sweep.py" \
   "summary:$out/ballistic_sweep.log sweep:$out/ballistic_sweep" \
   "$py scripts/ballistic_sweep.py --build $build --out $out/ballistic_sweep --np $np --models charmetant,linear,dem,hybrid --dem-velocities 450,600,1000 --hybrid-velocities 450,600,1000"
 # doc/performance.md, doc/performance-dem.md: the benchmarks.
+# The FE force loop on 1 rank and on every core, and the paper's FE case end
+# to end (doc/performance.md section 1); the DEM step on the whole yarn from
+# the impact on every core (doc/performance.md section 2).
 add bench_fe_throughput full "$CODE bench" "summary:$out/bench_fe_throughput.log" \
-  "$build/bench_fe_throughput"
+  "$build/bench_fe_throughput 300 prm/km2_120ms_fe.prm && mpirun -np $np $build/bench_fe_throughput 300 -"
 add bench_dem_throughput full "$CODE bench" "summary:$out/bench_dem_throughput.log" \
-  "$build/bench_dem_throughput"
+  "mpirun -np $np $build/bench_dem_throughput 0.0254 3000 4e-6 0 32"
 add bench_hybrid_cost full "$CODE bench" "summary:$out/bench_hybrid_cost.log" \
   "bash bench/hybrid_cost.sh $np"
 
