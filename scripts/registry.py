@@ -32,8 +32,10 @@ and the quantities that the extractor KIND reads from the run's outputs:
   sweep DIR               ballistics.csv and critical_velocities.csv of
                           scripts/ballistic_sweep.py: per model and impact
                           velocity V (its dot as _), MODEL_V_residual,
-                          _absorbed, _first_break, _cut_through, _end;
-                          critical_MODEL and critical_smith
+                          _absorbed, _first_break, _cut_through, _end,
+                          _at_once (1 if the yarn breaks at once);
+                          critical_MODEL, the bisection's bracket
+                          critical_MODEL_below and _above, critical_smith
   run DIR [LOG]           the history quantities of DIR, and the run's
                           steps, its largest strain, the times its
                           longitudinal and transverse fronts reach the
@@ -438,11 +440,24 @@ def extract_sweep(folder):
             v = number(row[column])
             if v is not None:
                 q["%s_%s" % (key, name)] = v
+        q[key + "_at_once"] = number(row["breaks at once"]) or 0.
     for row in rows("critical_velocities.csv"):
         model = "smith" if row["model"].startswith("Smith") else row["model"]
         v = number(row["critical velocity [m/s]"])
         if v is not None:
             q["critical_" + model] = v
+    # The bisection's bracket: each model's fastest run that does not break
+    # the yarn at once and its slowest run that does.
+    for row in rows("ballistics.csv"):
+        model, v = row["model"], float(row["impact velocity [m/s]"])
+        crit = q.get("critical_" + model)
+        if crit is None:
+            continue
+        if number(row["breaks at once"]):
+            if v >= crit and v < q.get("critical_%s_above" % model, 1e300):
+                q["critical_%s_above" % model] = v
+        elif v <= crit and v > q.get("critical_%s_below" % model, -1.):
+            q["critical_%s_below" % model] = v
     if not q:
         raise SystemExit("registry.py: no sweep results in " + folder)
     return q
