@@ -428,32 +428,30 @@ def extract_sweep(folder):
     def rows(name):
         with open(os.path.join(folder, name)) as f:
             return list(csv.DictReader(f))
-    for row in rows("ballistics.csv"):
-        key = "%s_%s" % (row["model"],
-                         ("%g" % float(row["impact velocity [m/s]"]))
-                         .replace(".", "_"))
-        for column, name in (("residual velocity [m/s]", "residual"),
-                             ("energy absorbed [mJ]", "absorbed"),
-                             ("first break [us]", "first_break"),
-                             ("cut through [us]", "cut_through"),
-                             ("end of run [us]", "end")):
-            v = number(row[column])
-            if v is not None:
-                q["%s_%s" % (key, name)] = v
-        q[key + "_at_once"] = number(row["breaks at once"]) or 0.
     for row in rows("critical_velocities.csv"):
         model = "smith" if row["model"].startswith("Smith") else row["model"]
         v = number(row["critical velocity [m/s]"])
         if v is not None:
             q["critical_" + model] = v
-    # The bisection's bracket: each model's fastest run that does not break
-    # the yarn at once and its slowest run that does.
     for row in rows("ballistics.csv"):
         model, v = row["model"], float(row["impact velocity [m/s]"])
+        key = "%s_%s" % (model, ("%g" % v).replace(".", "_"))
+        for column, name in (("residual velocity [m/s]", "residual"),
+                             ("energy absorbed [mJ]", "absorbed"),
+                             ("first break [us]", "first_break"),
+                             ("cut through [us]", "cut_through"),
+                             ("end of run [us]", "end")):
+            x = number(row[column])
+            if x is not None:
+                q["%s_%s" % (key, name)] = x
+        at_once = number(row["breaks at once"]) or 0.
+        q[key + "_at_once"] = at_once
+        # The bisection's bracket: the model's fastest run that does not
+        # break the yarn at once and its slowest run that does.
         crit = q.get("critical_" + model)
         if crit is None:
             continue
-        if number(row["breaks at once"]):
+        if at_once:
             if v >= crit and v < q.get("critical_%s_above" % model, 1e300):
                 q["critical_%s_above" % model] = v
         elif v <= crit and v > q.get("critical_%s_below" % model, -1.):

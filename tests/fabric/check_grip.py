@@ -31,17 +31,12 @@ check, "ok" or "FAILED", and exits 1 if one failed.
         holds the yarns' tension at 2 N an end).
 """
 import csv
+import os
 import re
 import sys
 
-failures = 0
-
-
-def check(ok, text):
-    global failures
-    print(("ok     " if ok else "FAILED ") + text)
-    if not ok:
-        failures += 1
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 
 def history(directory):
@@ -140,4 +135,4 @@ elif sys.argv[1] == "slipping":
     slipping(sys.argv[2], sys.argv[3])
 else:
     sys.exit(f"check_grip.py: unknown check {sys.argv[1]}")
-sys.exit(1 if failures else 0)
+finish()

@@ -75,18 +75,12 @@ if one failed.
                     projectile contact amplifies.
 """
 import csv
-import math
+import os
 import re
 import sys
 
-failures = 0
-
-
-def check(ok, text):
-    global failures
-    print(("ok     " if ok else "FAILED ") + text)
-    if not ok:
-        failures += 1
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 
 def history(directory, name):
@@ -271,4 +265,4 @@ elif sys.argv[1] == "cone":
     cone(sys.argv[2])
 elif sys.argv[1] == "single_warp":
     single_warp(sys.argv[2], sys.argv[3])
-sys.exit(1 if failures else 0)
+finish()

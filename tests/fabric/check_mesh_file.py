@@ -28,15 +28,11 @@ mesh_file, doc/fabric.md section 8). Prints one line per check, "ok" or
         turns the tangent by up to 7 degrees across a cell of 1/8 mm).
 """
 import csv
+import os
 import sys
 
-failures = 0
-
-
-def check(ok, text):
-    global failures
-    print(("ok     " if ok else "FAILED ") + text)
-    failures += 0 if ok else 1
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 
 def history(directory):
@@ -79,4 +75,4 @@ check(d <= 0.05 * lost,
       f"estimated directions against the generated patch: projectile "
       f"velocity within {d:.3g} m/s, {100 * d / lost:.2f} % of the "
       f"{lost:.3f} m/s lost (final {e[-1][v]:.4f} against {g[-1][v]:.4f} m/s)")
-sys.exit(1 if failures else 0)
+finish()

@@ -62,19 +62,14 @@ import base64
 import csv
 import glob
 import math
+import os
 import re
 import struct
 import sys
 import zlib
 
-failures = 0
-
-
-def check(ok, text):
-    global failures
-    print(("ok     " if ok else "FAILED ") + text)
-    if not ok:
-        failures += 1
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 
 def history(directory):
@@ -242,4 +237,4 @@ if sys.argv[1] == "plies":
 elif sys.argv[1] == "broken":
     broken(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]),
            float(sys.argv[5]), int(sys.argv[6]))
-sys.exit(1 if failures else 0)
+finish()

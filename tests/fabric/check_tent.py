@@ -38,10 +38,14 @@ projectile is 2 T(eps1) sin(theta).
 """
 import csv
 import math
+import os
 import re
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 N_WARP = 3            # warp yarns of the strip (the whole patch)
 PROJECTILE_MASS = 9.91e-6
@@ -130,16 +134,6 @@ def history(run):
     return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
 
 
-failures = 0
-
-
-def check(ok, text):
-    global failures
-    print(("ok     " if ok else "FAILED ") + text)
-    if not ok:
-        failures += 1
-
-
 def measure(run, stdout, name):
     EA, mw, own = setup(stdout)
     h = history(run)
@@ -155,13 +149,15 @@ def measure(run, stdout, name):
     print("%s: velocity %.2f -> %.2f m/s over [1, 4] us, lost %.2f; Smith, "
           "warp alone %.2f, weft moving along %.2f; front %.0f m/s, Smith %.0f m/s"
           % (name, v1, v4, v1 - v4, bare, full, front, U))
+    forces = {}
     for r, what in ((1.0, "warp alone"), (0.5, "weft moving along")):
         _, e1, th, u = jump(EA, mw, own["v"], r)
+        forces[r] = 2 * EA * e1 * math.sin(th)
         print("%s: jump conditions at %.0f m/s, %s (r = %.1f): eps1 %.2f %%, "
               "U %.0f m/s, %.1f N a warp yarn"
-              % (name, own["v"], what, r, 100 * e1, u, 2 * EA * e1 * math.sin(th)))
+              % (name, own["v"], what, r, 100 * e1, u, forces[r]))
     # The linear tension against the run's own Smith line (nonlinear law).
-    linear = force(EA, mw, own["v"], 1.0) / PROJECTILE_MASS
+    linear = forces[1.0] / PROJECTILE_MASS
     check(abs(linear / own["decel"] - 1) < 0.02,
           "%s: Smith's deceleration at %.0f m/s with E A eps %.4g m/s^2, the "
           "run's own %.4g (within 2 %%)" % (name, own["v"], linear, own["decel"]))
@@ -201,7 +197,7 @@ def main():
     check(narrow_full < 1.0,
           "narrow: velocity lost %.3f of the fully engaged weft's (below 1)"
           % narrow_full)
-    sys.exit(1 if failures else 0)
+    finish()
 
 
 if __name__ == "__main__":

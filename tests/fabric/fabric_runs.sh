@@ -187,32 +187,11 @@ case $case in
     # (17, 16 cells a spacing) and 1 mm apart (71, 4 cells a spacing):
     # 68 and 71 mm long, so that the longitudinal wave stays short of the
     # clamps for the 4 us of the run.
-    strip='subsection Yarn
-  set Failure = false
-end
-subsection Fabric
-  set Clamped edges = warp ends
-  set Crimp amplitude = 0.06e-3
-  set Cone deflection threshold = 0.2e-3
-end
-subsection Projectile
-  set Diameter = 0.6e-3
-  set Initial velocity = 600
-end
-subsection Output
-  set Verbosity = normal
-end
-set Symmetry = quarter
-'
-    patch wide 3 17 4e-6 0.1e-6 "$strip"'subsection Fabric
-  set Yarn spacing = 4e-3
-  set Cells per spacing = 16
-end
-' > wide.prm
-    patch narrow 3 71 4e-6 0.1e-6 "$strip"'subsection Fabric
-  set Cells per spacing = 4
-end
-' > narrow.prm
+    strip='subsection Yarn\n  set Failure = false\nend\nsubsection Fabric\n  set Clamped edges = warp ends\n  set Crimp amplitude = 0.06e-3\n  set Cone deflection threshold = 0.2e-3\nend\nsubsection Projectile\n  set Diameter = 0.6e-3\n  set Initial velocity = 600\nend\nsubsection Output\n  set Verbosity = normal\nend\nset Symmetry = quarter\n'
+    wide='subsection Fabric\n  set Yarn spacing = 4e-3\n  set Cells per spacing = 16\nend\n'
+    narrow='subsection Fabric\n  set Cells per spacing = 4\nend\n'
+    patch wide 3 17 4e-6 0.1e-6 "$strip$wide" > wide.prm
+    patch narrow 3 71 4e-6 0.1e-6 "$strip$narrow" > narrow.prm
     for c in wide narrow; do
       run 1 $c.prm
       [ "$rc" -eq 0 ] || fail "tent, $c: exit $rc: $(head -c 300 stderr)"
