@@ -22,7 +22,11 @@ written as it is.
 An entry is stale when a commit after its own changed what it depends on
 (its "depends" paths: by default source, include and prm), or when it was
 run on a tree with uncommitted changes there: its numbers are written with
-its commit appended, "29.91 (at a1b2c3d)".
+its commit appended, "29.91 (at a1b2c3d)". A model's own folders (OWN_CODE:
+the fabric's) count for the code (source, include, prm) of an entry only
+if its command names the model, and only while no code outside them
+includes their headers: the other models and the run never see them
+(doc/architecture.md).
 
   fill_docs.py [FILE...]          rewrite the markers (README.md and
                                   doc/*.md by default)
@@ -48,6 +52,11 @@ TABLE = re.compile(r"<!-- result-table\n(.*?)-->\n(.*?)<!-- /result-table -->",
                    re.S)
 PLACEHOLDER = re.compile(r"\{([\w-]+\.[^\s{}]+)((?: [^{}]*?)?)\}")
 META = ("commit", "date", "machine", "wall_s", "level", "command")
+CODE = ("source", "include", "prm")
+# A model's own folders, which nothing else includes: a change there
+# outdates only the entries whose command names the model.
+OWN_CODE = {"fabric": ("source/fabric", "include/yarn_impact/fabric",
+                       "prm/fabric")}
 
 
 class Missing(Exception):
@@ -68,11 +77,28 @@ class Registry:
         return subprocess.run(["git", "-C", self.root] + list(args),
                               capture_output=True, text=True)
 
+    def apart(self, paths):
+        """Whether no source or header outside PATHS includes a header of
+        PATHS' include folder (then a change in PATHS cannot reach a run of
+        another model)."""
+        headers = [p[len("include/"):] for p in paths if p.startswith("include/")]
+        if not headers:
+            return False
+        args = ["grep", "-l", "-E",
+                "#include *[<\"](" + "|".join(re.escape(h) for h in headers) + ")/",
+                "--", "source", "include"] + [":(exclude)" + p for p in paths]
+        result = self.git(*args)
+        return result.returncode == 1 and not result.stdout.strip()
+
     def stale(self, case):
         """None if the entry is current, else its short commit."""
         if case not in self._stale:
             e = self.entries[case]
-            deps = e.get("depends") or ["source", "include", "prm"]
+            deps = list(e.get("depends") or CODE)
+            if any(d in CODE for d in deps):
+                for model, paths in OWN_CODE.items():
+                    if model not in e.get("command", "") and self.apart(paths):
+                        deps += [":(exclude)" + p for p in paths]
             last = self.git("log", "-1", "--format=%H", "--", *deps).stdout.strip()
             fresh = True
             if last:
