@@ -184,7 +184,9 @@ namespace YarnImpact
                             "20e-6",
                             Double(0.),
                             "Deepest penetration that counts as a contact "
-                            "[m].");
+                            "[m]; below the yarn's meshed thickness "
+                            "semi-axis, so that a node pressed into a yarn "
+                            "is not found under its far side.");
           prm.declare_entry("Skin",
                             "20e-6",
                             Double(0.),
@@ -279,15 +281,27 @@ namespace YarnImpact
                   "is the stiffness of a grip that can slip, and "
                   "Fabric/Clamp grip/Pull-out force = 0 clamps the ends "
                   "rigidly: set a pull-out force or leave it 0");
+          // The meshed section's vertices reach beyond the ellipse (it is
+          // scaled to the ellipse's area).
+          const double meshed = WovenPatch::meshed_thickness_semi_axis(p);
           std::ostringstream touch;
           touch << "= " << p.amplitude * 1e3
-                << " mm must exceed the yarn's thickness semi-axis "
-                   "(Yarn/Thickness semi-axis) "
-                << p.thickness_semi_axis * 1e3
-                << " mm, or the crossing yarns overlap at rest";
-          require(p.amplitude > p.thickness_semi_axis,
-                  "Fabric/Crimp amplitude",
-                  touch.str());
+                << " mm must exceed the yarn's thickness semi-axis as "
+                   "meshed (Yarn/Thickness semi-axis scaled to the "
+                   "ellipse's area) "
+                << meshed * 1e3 << " mm, or the crossing yarns overlap at rest";
+          require(p.amplitude > meshed, "Fabric/Crimp amplitude", touch.str());
+          // Deeper than half a yarn's thickness, a node pressed into it
+          // would be nearer its far side than its near one.
+          std::ostringstream deep;
+          deep << "= " << fabric.contact.detection_depth * 1e6
+               << " um must be below the yarn's thickness semi-axis as meshed "
+               << meshed * 1e6
+               << " um, or a node pressed into a yarn is found under its far "
+                  "side";
+          require(fabric.contact.detection_depth < meshed,
+                  "Fabric/Yarn contact/Detection depth",
+                  deep.str());
           std::ostringstream wide;
           wide << "= " << p.spacing * 1e3
                << " mm must exceed the yarn's width (2 x Yarn/Width "

@@ -26,11 +26,13 @@ namespace YarnImpact
           "WovenPatch: the numbers of yarns and cells and the spacing must "
           "be positive");
       // At rest no two yarns may touch: a crossing's centrelines are 2 A
-      // apart across the fabric, neighbouring parallel ones s apart in it.
-      if (!(g.amplitude > g.thickness_semi_axis))
+      // apart across the fabric, their meshed sections' vertices reach
+      // meshed_thickness_semi_axis() from them; neighbouring parallel ones
+      // are s apart in it.
+      if (!(g.amplitude > meshed_thickness_semi_axis(g)))
         throw std::invalid_argument(
-          "WovenPatch: the crimp amplitude must exceed the thickness "
-          "semi-axis, or the crossing yarns overlap");
+          "WovenPatch: the crimp amplitude must exceed the meshed section's "
+          "thickness semi-axis, or the crossing yarns overlap");
       if (!(2. * g.width_semi_axis < g.spacing))
         throw std::invalid_argument(
           "WovenPatch: the spacing must exceed the yarn's width, or "

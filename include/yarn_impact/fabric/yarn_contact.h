@@ -251,6 +251,27 @@ namespace YarnImpact
         double tied_history[4][3] = {};
       };
 
+      /**
+       * A node @p p [m] whose closest point on the bilinear extension of
+       * @p face lies at its coordinates (@p xi, @p eta), beyond the face:
+       * whether it touches the face's boundary there, an edge or a vertex
+       * in the wedge of the faces that hold it (behind all of them and
+       * their images on a symmetry plane), within the detection depth.
+       * Then the weights of the face's corners at that point @p N [-], the
+       * normal @p n [-] out of the face's yarn, from the node to the
+       * feature, the distance @p depth [m], and the feature's nodes @p key
+       * (ascending, a vertex twice).
+       */
+      bool
+      boundary_contact(const unsigned int face,
+                       double xi,
+                       double eta,
+                       const double *p,
+                       double N[4],
+                       double n[3],
+                       double &depth,
+                       unsigned int key[2]) const;
+
       /** The most faces a tie shares the node among: the faces about a
        * vertex of a quadrilateral surface. */
       static constexpr unsigned int max_tied = 4;
