@@ -45,7 +45,6 @@ reached the cone) the checks are:
 rho_A is the patch's yarn mass over its area (the set-up lines), c the
 bar wave speed sqrt(EA / m), m the mass per length.
 """
-import csv
 import math
 import os
 import re
@@ -55,7 +54,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checks import check, finish  # noqa: E402
-from check_tent import jump  # noqa: E402
+from check_tent import history, jump, parameter  # noqa: E402
 
 PROJECTILE_MASS = 9.91e-6   # kg
 WINDOW = (0.6, 2.2)         # us
@@ -70,18 +69,6 @@ def setup(stdout):
     if not m:
         sys.exit("check_pyramid.py: no set-up line in " + stdout)
     return float(m.group(3)), float(m.group(2)) * 1e-6, float(m.group(1)) * 1e-6
-
-
-def parameter(run, name):
-    """A number of the run's parameters.prm."""
-    text = open(run + "/parameters.prm").read()
-    return float(re.search(r"set %s\s*=\s*([0-9.e+-]+)" % name, text).group(1))
-
-
-def history(run):
-    with open(run + "/history_fabric.csv") as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
 
 
 def cone(EA, mw, rho_A, v0, v1, R1, shape):
