@@ -72,6 +72,7 @@ class Registry:
                 entry = json.load(f)
             self.entries[entry["case"]] = entry
         self._stale = {}
+        self._apart = {}
 
     def git(self, *args):
         return subprocess.run(["git", "-C", self.root] + list(args),
@@ -80,15 +81,16 @@ class Registry:
     def apart(self, paths):
         """Whether no source or header outside PATHS includes a header of
         PATHS' include folder (then a change in PATHS cannot reach a run of
-        another model)."""
-        headers = [p[len("include/"):] for p in paths if p.startswith("include/")]
-        if not headers:
-            return False
-        args = ["grep", "-l", "-E",
-                "#include *[<\"](" + "|".join(re.escape(h) for h in headers) + ")/",
-                "--", "source", "include"] + [":(exclude)" + p for p in paths]
-        result = self.git(*args)
-        return result.returncode == 1 and not result.stdout.strip()
+        another model). Asked once per PATHS."""
+        if paths not in self._apart:
+            headers = [p[len("include/"):] for p in paths if p.startswith("include/")]
+            args = ["grep", "-l", "-E",
+                    "#include *[<\"](" + "|".join(re.escape(h) for h in headers) + ")/",
+                    "--", "source", "include"] + [":(exclude)" + p for p in paths]
+            result = self.git(*args) if headers else None
+            self._apart[paths] = bool(result and result.returncode == 1
+                                      and not result.stdout.strip())
+        return self._apart[paths]
 
     def stale(self, case):
         """None if the entry is current, else its short commit."""

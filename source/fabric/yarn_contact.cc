@@ -87,6 +87,9 @@ namespace YarnImpact
         {
           const auto &c    = surface.faces[f];
           const unsigned k = std::find(c.begin(), c.end(), node) - c.begin();
+          const double *corners[4];
+          for (unsigned int a = 0; a < 4; ++a)
+            corners[a] = &position[3 * c[a]];
           for (const double xi : g)
             for (const double eta : g)
               {
@@ -95,15 +98,7 @@ namespace YarnImpact
                                      xi * eta,
                                      (1 - xi) * eta};
                 double Xxi[3], Xeta[3], n[3];
-                for (unsigned int d = 0; d < 3; ++d)
-                  {
-                    const double *x0 = &position[3 * c[0] + d];
-                    const double *x1 = &position[3 * c[1] + d];
-                    const double *x2 = &position[3 * c[2] + d];
-                    const double *x3 = &position[3 * c[3] + d];
-                    Xxi[d]  = (1 - eta) * (*x1 - *x0) + eta * (*x2 - *x3);
-                    Xeta[d] = (1 - xi) * (*x3 - *x0) + xi * (*x2 - *x1);
-                  }
+                tangents(corners, xi, eta, Xxi, Xeta);
                 cross(Xxi, Xeta, n);
                 for (unsigned int d = 0; d < 3; ++d)
                   A[d] += 0.25 * N[k] * n[d];
@@ -111,15 +106,22 @@ namespace YarnImpact
         }
       // On a symmetry plane the faces of the mirror image are not
       // meshed: without its normal component the node's area vector is
-      // the whole node's share, so that its stiffness, -A . n, is too
-      // (the node's own rounding puts it within 1e-18 m of the plane).
-      const dealii::Point<3> &X = surface.reference[node];
-      const double on           = 1e-6 * parameters.detection_depth;
-      if (parameters.mirror_x && std::abs(X[0]) < on)
-        A[0] = 0.;
-      if (parameters.mirror_z && std::abs(X[2]) < on)
-        A[2] = 0.;
+      // the whole node's share, so that its stiffness, -A . n, is too.
+      for (const unsigned int axis : {0u, 2u})
+        if (on_symmetry_plane(node, axis))
+          A[axis] = 0.;
       return A;
+    }
+
+
+    bool
+    YarnContact::on_symmetry_plane(const unsigned int node,
+                                   const unsigned int axis) const
+    {
+      // The node's own rounding puts it within 1e-18 m of the plane.
+      const bool plane = axis == 0 ? parameters.mirror_x : parameters.mirror_z;
+      return plane && std::abs(surface.reference[node][axis]) <
+                        1e-6 * parameters.detection_depth;
     }
 
 
@@ -344,14 +346,14 @@ namespace YarnImpact
           for (unsigned int k = 0; k < n_tied; ++k)
             {
               const Touched &t = touched[tied[k]];
-              // Its own history if it was tied before, else the node's.
-              const double *old = slot.history;
-              for (unsigned int j = 0; j < slot.n_tied; ++j)
+              // Its own history if it was tied before, else the node's;
+              // none for a boundary.
+              const double none[3] = {0., 0., 0.};
+              const double *old    = t.boundary ? none : slot.history;
+              for (unsigned int j = 0; j < slot.n_tied && !t.boundary; ++j)
                 if (slot.tied_face[j] == t.face)
                   old = slot.tied_history[j];
               std::copy(old, old + 3, history[k]);
-              if (t.boundary)
-                std::fill(history[k], history[k] + 3, 0.);
               const Law law(constants(share, t.boundary));
               press(law, t.face, t.projection, t.depth, history[k], work);
               if (is_owned[s])

@@ -84,13 +84,16 @@ namespace YarnImpact
         return false;
       // On a symmetry plane when all its nodes are: the faces' images
       // across the plane count among its faces.
-      const double on   = 1e-6 * parameters.detection_depth;
-      bool mirror[2]    = {parameters.mirror_x, parameters.mirror_z};
-      const int axis[2] = {0, 2};
-      for (unsigned int m = 0; m < 2; ++m)
-        for (unsigned int k = 0; k < n_feature; ++k)
-          mirror[m] =
-            mirror[m] && std::abs(surface.reference[feature[k]][axis[m]]) < on;
+      bool mirror[2] = {true, true};
+      for (unsigned int k = 0; k < n_feature; ++k)
+        {
+          mirror[0] = mirror[0] && on_symmetry_plane(feature[k], 0);
+          mirror[1] = mirror[1] && on_symmetry_plane(feature[k], 2);
+        }
+      // The feature's point, from which the faces leave it.
+      double X[3];
+      for (unsigned int d = 0; d < 3; ++d)
+        X[d] = p[d] - r[d];
       // The point must lie behind every face that holds the feature, and
       // behind their images, and the feature must be each one's closest
       // point to it: the wedge of a concave edge or vertex, where it
@@ -132,8 +135,8 @@ namespace YarnImpact
                   {
                     for (unsigned int d = 0; d < 3; ++d)
                       {
-                        away[0][d] = position[3 * next + d] - p[d] + r[d];
-                        away[1][d] = position[3 * prev + d] - p[d] + r[d];
+                        away[0][d] = position[3 * next + d] - X[d];
+                        away[1][d] = position[3 * prev + d] - X[d];
                       }
                     n_away = 2;
                   }

@@ -52,6 +52,26 @@ namespace YarnImpact
       }
 
       /**
+       * The tangents X_xi and X_eta [m] of the bilinear face with cyclic
+       * corners @p c at its coordinates (@p xi, @p eta); X_xi x X_eta
+       * points out of the face's yarn.
+       */
+      inline void
+      tangents(const double *const c[4],
+               const double xi,
+               const double eta,
+               double *Xxi,
+               double *Xeta)
+      {
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            Xxi[d] =
+              (1 - eta) * (c[1][d] - c[0][d]) + eta * (c[2][d] - c[3][d]);
+            Xeta[d] = (1 - xi) * (c[3][d] - c[0][d]) + xi * (c[2][d] - c[1][d]);
+          }
+      }
+
+      /**
        * Closest point of the bilinear face with cyclic corners @p c to
        * @p p by Newton's method on (p - X) . X_xi = (p - X) . X_eta = 0,
        * from the centre: Side::inside if it lies on the face (within a
@@ -61,7 +81,7 @@ namespace YarnImpact
        * not converged.
        */
       inline Side
-      project(const double *c[4], const double *p, Projection &out)
+      project(const double *const c[4], const double *p, Projection &out)
       {
         double xi = 0.5, eta = 0.5;
         double X[3], Xxi[3], Xeta[3], r[3];
@@ -73,14 +93,11 @@ namespace YarnImpact
                                  xi * eta,
                                  (1 - xi) * eta};
             double Xc[3];
+            tangents(c, xi, eta, Xxi, Xeta);
             for (unsigned int d = 0; d < 3; ++d)
               {
                 X[d] = N[0] * c[0][d] + N[1] * c[1][d] + N[2] * c[2][d] +
                        N[3] * c[3][d];
-                Xxi[d] =
-                  (1 - eta) * (c[1][d] - c[0][d]) + eta * (c[2][d] - c[3][d]);
-                Xeta[d] =
-                  (1 - xi) * (c[3][d] - c[0][d]) + xi * (c[2][d] - c[1][d]);
                 Xc[d] = c[0][d] - c[1][d] + c[2][d] - c[3][d];
                 r[d]  = p[d] - X[d];
               }
@@ -137,15 +154,12 @@ namespace YarnImpact
       inline void
       face_normal(const double *const c[4], double xi, double eta, double *n)
       {
-        xi  = std::min(1., std::max(0., xi));
-        eta = std::min(1., std::max(0., eta));
         double Xxi[3], Xeta[3];
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            Xxi[d] =
-              (1 - eta) * (c[1][d] - c[0][d]) + eta * (c[2][d] - c[3][d]);
-            Xeta[d] = (1 - xi) * (c[3][d] - c[0][d]) + xi * (c[2][d] - c[1][d]);
-          }
+        tangents(c,
+                 std::min(1., std::max(0., xi)),
+                 std::min(1., std::max(0., eta)),
+                 Xxi,
+                 Xeta);
         cross(Xxi, Xeta, n);
         const double length = std::sqrt(dot(n, n));
         for (unsigned int d = 0; d < 3; ++d)

@@ -53,7 +53,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, finish  # noqa: E402
+from checks import check, finish, integrate  # noqa: E402
 from check_tent import history, jump, parameter  # noqa: E402
 
 PROJECTILE_MASS = 9.91e-6   # kg
@@ -89,15 +89,7 @@ def cone(EA, mw, rho_A, v0, v1, R1, shape):
             return jump(EA, mw, V, 0.5)[3]
         eps = (V / (math.sqrt(2) * c_m)) ** (4. / 3.)
         return c_m * math.sqrt(eps)
-    n = 100
-    h = (WINDOW[1] - WINDOW[0]) * 1e-6 / n
-    R = R1
-    for _ in range(n):
-        k1 = speed(R)
-        k2 = speed(R + 0.5 * h * k1)
-        k3 = speed(R + 0.5 * h * k2)
-        k4 = speed(R + h * k3)
-        R += h * (k1 + 2 * k2 + 2 * k3 + k4) / 6
+    R = integrate(speed, R1, (WINDOW[1] - WINDOW[0]) * 1e-6, 100)
     return velocity(R), R
 
 

@@ -45,7 +45,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, finish  # noqa: E402
+from checks import check, finish, integrate  # noqa: E402
 
 N_WARP = 3            # warp yarns of the strip (the whole patch)
 PROJECTILE_MASS = 9.91e-6
@@ -107,19 +107,9 @@ def force(EA, mw, V, r):
 def smith_loss(EA, mw, v1, r, duration):
     """Velocity lost over DURATION [s] from v1 under N_WARP yarns' force
     (classical Runge-Kutta, 60 steps)."""
-    n = 60
-    h = duration / n
-    v = v1
-
     def a(u):
         return -N_WARP * force(EA, mw, u, r) / PROJECTILE_MASS
-    for _ in range(n):
-        k1 = a(v)
-        k2 = a(v + 0.5 * h * k1)
-        k3 = a(v + 0.5 * h * k2)
-        k4 = a(v + h * k3)
-        v += h * (k1 + 2 * k2 + 2 * k3 + k4) / 6
-    return v1 - v
+    return v1 - integrate(a, v1, duration, 60)
 
 
 def parameter(run, name):

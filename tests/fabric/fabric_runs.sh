@@ -158,6 +158,18 @@ run() {
   rc=$?
 }
 
+# run_pair WHAT A B: on 1 rank, A.prm and B.prm, each stdout kept as
+# A.stdout and B.stdout (the set-up lines the checkers read); a run that
+# fails is counted, named "WHAT, A".
+run_pair() {
+  local c
+  for c in "$2" "$3"; do
+    run 1 "$c.prm"
+    [ "$rc" -eq 0 ] || fail "$1, $c: exit $rc: $(head -c 300 stderr)"
+    cp stdout "$c.stdout"
+  done
+}
+
 # restarted REF CUT ROW WHAT: on 1 rank, REF.prm run to its end and
 # CUT.prm (the same case) stopped by SIGTERM at history row ROW and
 # continued with --restart; the two histories byte for byte, the checks
@@ -201,11 +213,7 @@ case $case in
     narrow='subsection Fabric\n  set Cells per spacing = 4\nend\n'
     patch wide 3 17 4e-6 0.1e-6 "$strip$wide" > wide.prm
     patch narrow 3 71 4e-6 0.1e-6 "$strip$narrow" > narrow.prm
-    for c in wide narrow; do
-      run 1 $c.prm
-      [ "$rc" -eq 0 ] || fail "tent, $c: exit $rc: $(head -c 300 stderr)"
-      cp stdout $c.stdout
-    done
+    run_pair tent wide narrow
     /usr/bin/python3 "$here/check_tent.py" wide wide.stdout narrow narrow.stdout ||
       failures=$((failures + 1))
     ;;
@@ -219,11 +227,7 @@ case $case in
     crimped='subsection Fabric\n  set Crimp amplitude = 0.065e-3\nend\n'
     patch tape 21 21 2.2e-6 0.05e-6 "$point$tape" > tape.prm
     patch crimped 21 21 2.2e-6 0.05e-6 "$point$crimped" > crimped.prm
-    for c in tape crimped; do
-      run 1 $c.prm
-      [ "$rc" -eq 0 ] || fail "pyramid, $c: exit $rc: $(head -c 300 stderr)"
-      cp stdout $c.stdout
-    done
+    run_pair pyramid tape crimped
     /usr/bin/python3 "$here/check_pyramid.py" tape tape.stdout crimped crimped.stdout ||
       failures=$((failures + 1))
     ;;

@@ -135,10 +135,10 @@ namespace YarnImpact
      * p (n_warp + n_weft) + n_warp + j.
      *
      * The yarns must not touch at rest: the constructor refuses
-     * A <= a_y (crossing sections overlap), 2 a_z >= s (neighbouring
-     * parallel yarns overlap) and, with several plies, h <= ply_thickness()
-     * (neighbouring plies' meshes overlap), as well as a folding crimp
-     * (CrimpedYarn).
+     * A <= meshed_thickness_semi_axis() (crossing sections overlap),
+     * 2 a_z >= s (neighbouring parallel yarns overlap) and, with several
+     * plies, h <= ply_thickness() (neighbouring plies' meshes overlap), as
+     * well as a folding crimp (CrimpedYarn).
      */
     class WovenPatch
     {

@@ -251,6 +251,11 @@ namespace YarnImpact
         double tied_history[4][3] = {};
       };
 
+      /** Whether surface node @p node lies on the symmetry plane normal
+       * to @p axis (0: x = 0, 2: z = 0) that bounds the modelled part. */
+      bool
+      on_symmetry_plane(const unsigned int node, const unsigned int axis) const;
+
       /**
        * A node @p p [m] whose closest point on the bilinear extension of
        * @p face lies at its coordinates (@p xi, @p eta), beyond the face:
