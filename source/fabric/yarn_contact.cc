@@ -152,7 +152,13 @@ namespace YarnImpact
       };
       Touched touched[max_touched];
       unsigned int n_touched = 0;
-      double extent          = 0.;
+      // A touching contact holds its node to twice the detection depth
+      // (the lists are built to that depth plus the skin): a face pressed
+      // harder than its spring can stop in d_max goes on pushing, rather
+      // than letting go of k d_max^2 / 2 at once.
+      const double reach =
+        (slot.touching ? 2. : 1.) * parameters.detection_depth;
+      double extent = 0.;
       // The boundary features (edges, vertices) already touched, once each.
       unsigned int features[max_touched][2], n_features = 0;
       const auto normal_opposes = [&](const double *n) {
@@ -195,7 +201,7 @@ namespace YarnImpact
             c[a] = &position[3 * surface.faces[f][a]];
           double face_extent;
           Projection trial;
-          if (!may_touch(c, p, parameters.detection_depth, face_extent))
+          if (!may_touch(c, p, reach, face_extent))
             continue;
           const Side side = project(c, p, trial);
           if (side == Side::beyond)
@@ -209,6 +215,7 @@ namespace YarnImpact
                                     trial.xi,
                                     trial.eta,
                                     p,
+                                    reach,
                                     edge.N,
                                     edge.n,
                                     depth,
@@ -231,7 +238,7 @@ namespace YarnImpact
           if (side != Side::inside || !normal_opposes(trial.n))
             continue;
           const double depth = -trial.gap;
-          if (!(depth > 0. && depth <= parameters.detection_depth))
+          if (!(depth > 0. && depth <= reach))
             continue;
           keep(trial, depth, f, face_extent, false);
         }
@@ -287,6 +294,33 @@ namespace YarnImpact
         c.mass     = share * surface.mass[s];
         return c;
       };
+      // The node's velocity relative to @p face's point @p projection
+      // [m/s].
+      const auto relative_velocity = [&](const unsigned int face,
+                                         const Projection &projection,
+                                         double v_rel[3]) {
+        const auto &corners = surface.faces[face];
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            v_rel[d] = velocity[3 * s + d];
+            for (unsigned int a = 0; a < 4; ++a)
+              v_rel[d] -= projection.N[a] * velocity[3 * corners[a] + d];
+          }
+      };
+      // A starting contact's spring is unstretched at the depth the node
+      // had before this step [m], depth + dt v_rel . n along the normal
+      // (the velocities are the step's, x_n - x_{n-1} = dt v), between 0
+      // and its depth now: a node that crossed the surface in this step
+      // presses by all its depth, as a penalty contact does, and a node
+      // already that deep (at rest in a given mesh, or back from beyond
+      // d_max or from outside every face's wedge) is not pushed out by a
+      // spring that would store k depth^2 / 2 at once.
+      const auto unstretched = [&](const Touched &t) {
+        double v_rel[3];
+        relative_velocity(t.face, t.projection, v_rel);
+        const double before = t.depth + dt * dot(v_rel, t.projection.n);
+        return std::min(std::max(before, 0.), t.depth);
+      };
       // The force of @p law on the node at the depth @p depth [m] below
       // @p face's point @p projection, with the tangential @p history [m],
       // and the opposite force on the face's nodes by their shape
@@ -299,12 +333,7 @@ namespace YarnImpact
                              double &work) {
         const auto &corners = surface.faces[face];
         double v_rel[3];
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            v_rel[d] = velocity[3 * s + d];
-            for (unsigned int a = 0; a < 4; ++a)
-              v_rel[d] -= projection.N[a] * velocity[3 * corners[a] + d];
-          }
+        relative_velocity(face, projection, v_rel);
         double f[3];
         Contact::contact_force(law,
                                depth,
@@ -339,8 +368,12 @@ namespace YarnImpact
               for (unsigned int k = 0; k < n_tied; ++k)
                 start += dot(ns, touched[tied[k]].projection.n);
               slot.stiffness = -0.5 * parameters.penalty * share * start;
+              slot.offset    = unstretched(touched[closest]);
             }
           slot.touching = true;
+          // As the node comes up the spring's rest depth follows it: the
+          // spring holds nothing then, so no energy comes or goes.
+          slot.offset = std::min(slot.offset, touched[closest].depth);
           double history[max_tied][3], mean[3] = {0., 0., 0.}, work = 0.;
           unsigned int n_faces = 0;
           for (unsigned int k = 0; k < n_tied; ++k)
@@ -355,9 +388,10 @@ namespace YarnImpact
                   old = slot.tied_history[j];
               std::copy(old, old + 3, history[k]);
               const Law law(constants(share, t.boundary));
-              press(law, t.face, t.projection, t.depth, history[k], work);
+              const double depth = t.depth - slot.offset;
+              press(law, t.face, t.projection, depth, history[k], work);
               if (is_owned[s])
-                slot.energy += law.energy(t.depth, history[k]);
+                slot.energy += law.energy(depth, history[k]);
               n_faces += !t.boundary;
             }
           if (is_owned[s])
@@ -408,16 +442,19 @@ namespace YarnImpact
         {
           std::fill(slot.history, slot.history + 3, 0.);
           slot.stiffness = -0.5 * parameters.penalty * dot(ns, best.n);
+          slot.offset    = unstretched(touched[closest]);
         }
-      slot.touching = true;
+      slot.touching      = true;
+      slot.offset        = std::min(slot.offset, best_depth);
+      const double depth = best_depth - slot.offset;
       const Law law(constants(1., boundary));
       double work = 0., none[3] = {0., 0., 0.};
       double *history = boundary ? none : slot.history;
-      press(law, best_face, best, best_depth, history, work);
+      press(law, best_face, best, depth, history, work);
       if (is_owned[s])
         {
           node_dissipated[s] += work;
-          slot.energy = law.energy(best_depth, history);
+          slot.energy = law.energy(depth, history);
         }
     }
 

@@ -19,6 +19,7 @@ namespace YarnImpact
                                   double xi,
                                   double eta,
                                   const double *p,
+                                  const double reach,
                                   double N[4],
                                   double n[3],
                                   double &depth,
@@ -79,8 +80,7 @@ namespace YarnImpact
         for (unsigned int d = 0; d < 3; ++d)
           r[d] = p[d] - position[3 * feature[0] + d];
       const double distance2 = dot(r, r);
-      if (!(distance2 > 0.) ||
-          distance2 > parameters.detection_depth * parameters.detection_depth)
+      if (!(distance2 > 0.) || distance2 > reach * reach)
         return false;
       // On a symmetry plane when all its nodes are: the faces' images
       // across the plane count among its faces.

@@ -172,14 +172,15 @@ namespace YarnImpact
                      communicator);
       std::map<std::pair<unsigned int, unsigned int>, const double *> old;
       for (unsigned int i = 0; i < all.size();
-           i += 7 + 4 * static_cast<unsigned int>(all[i + 6]))
+           i += 8 + 4 * static_cast<unsigned int>(all[i + 7]))
         old[{static_cast<unsigned int>(all[i]),
              static_cast<unsigned int>(all[i + 1])}] = &all[i + 2];
 
-      // Bins of side h, the largest face box grown by d_max + skin: each
+      // Bins of side h, the largest face box grown by 2 d_max + skin: each
       // face goes into the bins its grown box meets.
       const unsigned int n_faces = surface.faces.size();
-      const double grow          = parameters.detection_depth + parameters.skin;
+      // Touching contacts hold their nodes to 2 d_max.
+      const double grow = 2. * parameters.detection_depth + parameters.skin;
       std::vector<std::array<double, 6>> box(n_faces);
       double h = 0.;
       for (unsigned int f = 0; f < n_faces; ++f)
@@ -268,10 +269,11 @@ namespace YarnImpact
                       slot.touching = true;
                       std::copy(o->second, o->second + 3, slot.history);
                       slot.stiffness = o->second[3];
-                      slot.n_tied    = static_cast<unsigned int>(o->second[4]);
+                      slot.offset    = o->second[4];
+                      slot.n_tied    = static_cast<unsigned int>(o->second[5]);
                       for (unsigned int k = 0; k < slot.n_tied; ++k)
                         {
-                          const double *tied = o->second + 5 + 4 * k;
+                          const double *tied = o->second + 6 + 4 * k;
                           slot.tied_face[k] =
                             static_cast<unsigned int>(tied[0]);
                           std::copy(tied + 1, tied + 4, slot.tied_history[k]);
@@ -301,6 +303,7 @@ namespace YarnImpact
                         slot.history[1],
                         slot.history[2],
                         slot.stiffness,
+                        slot.offset,
                         double(slot.n_tied)});
             for (unsigned int k = 0; k < slot.n_tied; ++k)
               out.insert(out.end(),

@@ -13,7 +13,17 @@
 //     contact's stable step times 0.5, 0.1 and 0.05: momentum kept to
 //     1e-12 relative; the energy error after the bodies part, kinetic
 //     plus contact energy, below 1 %, 0.1 % and 0.025 %, shrinking as the
-//     step squared (velocity Verlet's order).
+//     step squared (velocity Verlet's order);
+// (d) the spring's rest depth and the hold (the upper block moved by
+//     steps, its velocity each step's motion over dt): blocks that overlap
+//     by d at rest carry no force; pressed a further d in one step, p d
+//     per area (the spring starts at the depth the nodes had); raised by
+//     1.5 d, none (the rest depth follows them up); lowered by d / 4,
+//     p d / 4 per area. A contact pressed by steps of d_max / 4 to
+//     1.5 d_max carries p 1.5 d_max per area (a touching contact holds to
+//     2 d_max), and lets go beyond 2 d_max; blocks brought from apart to
+//     1.5 d_max in one step do not touch (no contact starts beyond d_max).
+// In (a) and (b) the blocks are pressed by d in the first step, as in (d).
 
 #include <yarn_impact/fabric/yarn_contact.h>
 
@@ -78,6 +88,31 @@ namespace
     return x;
   }
 
+  /** Velocities [m/s] that move yarn 1's nodes by @p dy along y in
+   * the step @p dt [s], yarn 0's at rest. */
+  std::vector<double>
+  moving_upper(const Fabric::ContactSurface &s,
+               const double dy,
+               const double dt)
+  {
+    std::vector<double> v(3 * s.n_nodes(), 0.);
+    for (unsigned int i = 0; i < s.n_nodes(); ++i)
+      if (s.node_yarn[i] == 1)
+        v[3 * i + 1] = dy / dt;
+    return v;
+  }
+
+  /** Move yarn 1's nodes of @p x [m] by @p dy [m] along y. */
+  void
+  move_upper(const Fabric::ContactSurface &s,
+             std::vector<double> &x,
+             const double dy)
+  {
+    for (unsigned int i = 0; i < s.n_nodes(); ++i)
+      if (s.node_yarn[i] == 1)
+        x[3 * i + 1] += dy;
+  }
+
   /** Total force on yarn @p yarn, component @p d [N]. */
   double
   total(const Fabric::ContactSurface &s,
@@ -111,7 +146,8 @@ main(int argc, char **argv)
     {
       const auto s = two_blocks(d, {4, 1, 3}, {n1x, 1, n1x == 4 ? 3u : 2u});
       Fabric::YarnContact contact(prm, s, all_nodes(s), MPI_COMM_SELF);
-      std::vector<double> x = positions(s), v(x.size(), 0.), f(x.size(), 0.);
+      std::vector<double> x = positions(s), v = moving_upper(s, -d, 1e-9),
+                          f(x.size(), 0.);
       contact.add_forces(x, v, 1e-9, f);
       const double f0 = total(s, f, 0, 1), f1 = total(s, f, 1, 1);
       std::printf("  upper mesh %u x %u: force on lower %.9f N, on upper "
@@ -136,9 +172,10 @@ main(int argc, char **argv)
     for (const unsigned int K : {100u, 150u, 1000u})
       {
         Fabric::YarnContact contact(prm, s, all_nodes(s), MPI_COMM_SELF);
-        std::vector<double> x = positions(s), v(x.size(), 0.), f;
+        std::vector<double> x = positions(s), v = moving_upper(s, -d, dt), f;
         f.assign(x.size(), 0.);
         contact.add_forces(x, v, dt, f);
+        v.assign(x.size(), 0.);
         for (unsigned int i = 0; i < s.n_nodes(); ++i)
           if (s.node_yarn[i] == 1)
             v[3 * i] = V;
@@ -247,6 +284,72 @@ main(int argc, char **argv)
                 "4; between 3 and 6: %s)\n",
                 ratio,
                 yes_no[ratio > 3. && ratio < 6.]);
+  }
+
+  // (d) The rest depth and the hold: the upper block moved step by step.
+  {
+    const double dt = 1e-9, d_max = prm.detection_depth;
+    std::printf("(d) rest depth and hold, d = 1 um, d_max = %.0f um: p A "
+                "= %.6f N/um\n",
+                d_max * 1e6,
+                N / (d * 1e6));
+    const auto s = two_blocks(d, {4, 1, 3}, {4, 1, 3});
+    // Each step: move by @p dy, evaluate, compare the force on the lower
+    // block with p @p expect A and the energy with p expect^2 A / 2.
+    const auto step = [&](Fabric::YarnContact &contact,
+                          std::vector<double> &x,
+                          const double dy,
+                          const double expect,
+                          const char *what) {
+      move_upper(s, x, dy);
+      std::vector<double> v = moving_upper(s, dy, dt), f(x.size(), 0.);
+      contact.add_forces(x, v, dt, f);
+      const double f0 = -total(s, f, 0, 1), f1 = total(s, f, 1, 1);
+      const double want = prm.penalty * expect * a * w;
+      const double E    = contact.energy();
+      const bool ok     = std::abs(f0 - want) <= 1e-12 * N &&
+                      std::abs(f0 - f1) <= 1e-14 * N &&
+                      std::abs(E - 0.5 * want * expect) <= 1e-12 * 0.5 * N * d;
+      if (what)
+        std::printf("  %s: force %.9f N, energy %.6e J (p %.2f um A: "
+                    "%.9f N, %.6e J): %s\n",
+                    what,
+                    f0,
+                    E,
+                    expect * 1e6,
+                    want,
+                    0.5 * want * expect,
+                    yes_no[ok]);
+      return ok;
+    };
+    {
+      Fabric::YarnContact contact(prm, s, all_nodes(s), MPI_COMM_SELF);
+      std::vector<double> x = positions(s);
+      step(contact, x, 0., 0., "overlapping by d at rest");
+      step(contact, x, -d, d, "pressed a further d");
+      step(contact, x, 1.5 * d, 0., "raised by 1.5 d");
+      step(contact, x, -0.25 * d, 0.25 * d, "lowered by d / 4");
+    }
+    {
+      Fabric::YarnContact contact(prm, s, all_nodes(s), MPI_COMM_SELF);
+      std::vector<double> x = positions(s);
+      move_upper(s, x, d); // touching at y = 0
+      bool ok = true;
+      for (unsigned int k = 1; k <= 6; ++k)
+        ok = step(contact, x, -0.25 * d_max, 0.25 * k * d_max, nullptr) && ok;
+      std::printf("  pressed by steps of d_max / 4 to 1.5 d_max, p A per "
+                  "depth at each: %s\n",
+                  yes_no[ok]);
+      step(contact, x, 0., 1.5 * d_max, "held at 1.5 d_max");
+      step(contact, x, -d_max, 0., "pressed to 2.5 d_max");
+    }
+    {
+      Fabric::YarnContact contact(prm, s, all_nodes(s), MPI_COMM_SELF);
+      std::vector<double> x = positions(s);
+      move_upper(s, x, d + 0.1 * d_max); // apart by d_max / 10
+      step(contact, x, 0., 0., nullptr);
+      step(contact, x, -1.6 * d_max, 0., "from apart to 1.5 d_max in a step");
+    }
   }
   return 0;
 }

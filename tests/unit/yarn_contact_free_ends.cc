@@ -207,6 +207,11 @@ main(int argc, char **argv)
         for (unsigned int i = 0; i < s.n_nodes(); ++i)
           for (unsigned int c = 0; c < 3; ++c)
             x[3 * i + c] = s.reference[i][c];
+        // Pressed by d in the step (a contact's spring starts at the
+        // depth its node had before the step).
+        for (unsigned int i = 0; i < s.n_nodes(); ++i)
+          if (s.node_yarn[i] == 1)
+            v[3 * i + 1] = -d / 1e-9;
         contact.add_forces(x, v, 1e-9, f);
         double f0 = 0., f1 = 0.;
         for (unsigned int i = 0; i < s.n_nodes(); ++i)

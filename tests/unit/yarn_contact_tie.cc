@@ -73,7 +73,8 @@ namespace
     return Fabric::make_contact_surface(both, 1440.);
   }
 
-  /** The contact forces [N] on every node of @p surface at rest. */
+  /** The contact forces [N] on every node of @p surface, the block
+   * pressed onto the roof by d in the step. */
   std::vector<double>
   forces(const Fabric::ContactSurface &surface)
   {
@@ -86,7 +87,13 @@ namespace
     for (unsigned int i = 0; i < surface.n_nodes(); ++i)
       for (unsigned int c = 0; c < 3; ++c)
         x[3 * i + c] = surface.reference[i][c];
-    contact.add_forces(x, v, 1e-9, f);
+    // The block pressed down by d in the step (a contact's spring starts
+    // at the depth its node had before the step).
+    const double dt = 1e-9;
+    for (unsigned int i = 0; i < surface.n_nodes(); ++i)
+      if (surface.node_yarn[i] == 1)
+        v[3 * i + 1] = -d / dt;
+    contact.add_forces(x, v, dt, f);
     return f;
   }
 } // namespace

@@ -102,7 +102,8 @@ namespace YarnImpact
        * mass on its spring [-]. */
       double damping_ratio = 0.;
       /** Deepest penetration detected, d_max [m]: a node deeper below a
-       * face is not in contact with it. */
+       * face does not start a contact with it; a touching contact holds
+       * its node to 2 d_max. */
       double detection_depth = 20e-6;
       /** Skin s of the candidate search [m]: the lists are rebuilt when a
        * node has moved s/2 since the last build. */
@@ -126,9 +127,13 @@ namespace YarnImpact
      * normal stiffness p A_s / 2 (A_s the node's area facing the face,
      * fixed when the contact starts) on the node and the opposite force on
      * the face's nodes by their shape functions at the projection, so
-     * that momentum is conserved to round-off. A node over an edge or a
-     * vertex whose faces it penetrates equally, to within 1e-10 of the
-     * faces' size (a tie), is shared equally among them: each gets 1/t of
+     * that momentum is conserved to round-off. The spring is unstretched
+     * at the depth the node had before the step in which the contact
+     * started (0 for a node that crossed the surface in it), a rest depth
+     * that follows the node up: no contact starts with stored energy. A
+     * touching contact holds its node to twice the detection depth. A node over
+     * an edge or a vertex whose faces it penetrates equally, to within 1e-10 of
+     * the faces' size (a tie), is shared equally among them: each gets 1/t of
      * its stiffness, damping and mass with its own depth, normal and
      * tangential history, whatever the faces' order (doc/fabric.md
      * section 10). Tangential history per contact (node, other yarn), and
@@ -216,8 +221,8 @@ namespace YarnImpact
 
       /** Write the contact's state to a checkpoint: the touching
        * contacts whose node this rank owns (node, other yarn, tangential
-       * history [m], normal stiffness [N/m], tied faces and their
-       * histories [m]) and each owned node's
+       * history [m], normal stiffness [N/m], the spring's rest depth [m],
+       * tied faces and their histories [m]) and each owned node's
        * dissipated work [J]. The candidate lists are not written: they are
        * built again after load(), and longer or shorter lists give the
        * same forces. */
@@ -242,6 +247,10 @@ namespace YarnImpact
         double history[3] = {0., 0., 0.};
         /** Normal stiffness, fixed when the contact starts [N/m]. */
         double stiffness = 0.;
+        /** Depth at which the normal spring is unstretched [m]: the depth
+         * the node had before the step in which the contact started (0
+         * when it crossed the surface then), following the node up. */
+        double offset = 0.;
         /** Energy stored at the last evaluation [J]. */
         double energy = 0.;
         /** The tied faces of the last evaluation (none: one face or no
@@ -272,6 +281,7 @@ namespace YarnImpact
                        double xi,
                        double eta,
                        const double *p,
+                       const double reach,
                        double N[4],
                        double n[3],
                        double &depth,
@@ -286,8 +296,9 @@ namespace YarnImpact
       static constexpr unsigned int max_touched = 8;
 
       /** Append the touching contacts of the owned slave nodes to @p out,
-       * 7 + 4 t doubles each (node, yarn, tangential history, stiffness,
-       * t tied faces, each face and its history): the record a checkpoint
+       * 8 + 4 t doubles each (node, yarn, tangential history, stiffness,
+       * the spring's rest depth, t tied faces, each face and its
+       * history): the record a checkpoint
        * and a rebuild's history hand-over share. */
       void
       append_touching(std::vector<double> &out) const;
@@ -361,8 +372,8 @@ namespace YarnImpact
       std::vector<unsigned int> slot_faces;
       /** Damping and slip work of each owned node as a slave [J]. */
       std::vector<double> node_dissipated;
-      /** Touching contacts read by load(), 6 doubles each, for the next
-       * rebuild. */
+      /** Touching contacts read by load(), as append_touching() writes
+       * them, for the next rebuild. */
       std::vector<double> loaded;
       unsigned int rebuilds = 0;
       bool built            = false;
