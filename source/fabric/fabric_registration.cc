@@ -183,8 +183,9 @@ namespace YarnImpact
           prm.declare_entry("Detection depth",
                             "20e-6",
                             Double(0.),
-                            "Deepest penetration that counts as a contact "
-                            "[m]; below the yarn's meshed thickness "
+                            "Deepest penetration at which a contact starts "
+                            "[m] (a touching contact holds its node to "
+                            "twice it); below the yarn's meshed thickness "
                             "semi-axis, so that a node pressed into a yarn "
                             "is not found under its far side.");
           prm.declare_entry("Skin",
