@@ -71,6 +71,11 @@ namespace YarnImpact
       for (unsigned int f = 0; f < surface.faces.size(); ++f)
         for (const unsigned int node : surface.faces[f])
           node_faces[node].push_back(f);
+      remote_terms.resize(n_ranks);
+      node_owner.resize(surface.n_nodes());
+      for (int r = 0; r < n_ranks; ++r)
+        for (int k = displacements[r]; k < displacements[r + 1]; ++k)
+          node_owner[gather_order[k]] = r;
     }
 
 
@@ -127,12 +132,12 @@ namespace YarnImpact
 
     template <class Law>
     void
-    YarnContact::slot_force(Slot &slot,
-                            const double dt,
-                            std::vector<double> &force)
+    YarnContact::slot_force(Slot &slot, const double dt)
     {
       const unsigned int s = slot.node;
       const double *p      = &position[3 * s];
+      // The slot's force terms, numbered in the order they are made.
+      unsigned int n_terms = 0;
       // The node's area vector, evaluated when a face's projection first
       // needs it (most slots have none near enough): the same numbers.
       double ns[3]   = {0., 0., 0.};
@@ -343,13 +348,14 @@ namespace YarnImpact
                                history,
                                f,
                                work);
-        if (is_owned[s])
-          for (unsigned int d = 0; d < 3; ++d)
-            force[3 * local_index[s] + d] += f[d];
+        add_term(s, slot, n_terms++, f);
         for (unsigned int a = 0; a < 4; ++a)
-          if (is_owned[corners[a]])
-            for (unsigned int d = 0; d < 3; ++d)
-              force[3 * local_index[corners[a]] + d] -= projection.N[a] * f[d];
+          {
+            const double g[3] = {-(projection.N[a] * f[0]),
+                                 -(projection.N[a] * f[1]),
+                                 -(projection.N[a] * f[2])};
+            add_term(corners[a], slot, n_terms++, g);
+          }
       };
       if (n_tied > 1)
         {
@@ -390,12 +396,10 @@ namespace YarnImpact
               const Law law(constants(share, t.boundary));
               const double depth = t.depth - slot.offset;
               press(law, t.face, t.projection, depth, history[k], work);
-              if (is_owned[s])
-                slot.energy += law.energy(depth, history[k]);
+              slot.energy += law.energy(depth, history[k]);
               n_faces += !t.boundary;
             }
-          if (is_owned[s])
-            node_dissipated[s] += work;
+          node_dissipated[s] += work;
           // The faces' histories (boundaries keep none; with only
           // boundaries tied the last ones stay).
           if (n_faces > 0)
@@ -451,11 +455,8 @@ namespace YarnImpact
       double work = 0., none[3] = {0., 0., 0.};
       double *history = boundary ? none : slot.history;
       press(law, best_face, best, depth, history, work);
-      if (is_owned[s])
-        {
-          node_dissipated[s] += work;
-          slot.energy = law.energy(depth, history);
-        }
+      node_dissipated[s] += work;
+      slot.energy = law.energy(depth, history);
     }
 
 
@@ -491,12 +492,35 @@ namespace YarnImpact
       // each node's force sums its terms in the same order on any
       // partition.
       StepTimer::Scope scope(timer, StepTimer::contact_forces);
+      local_terms.clear();
+      for (auto &terms : remote_terms)
+        terms.clear();
       Contact::with_contact_law(parameters.law, [&](auto tag) {
         using Law = typename decltype(tag)::type;
         for (Slot &slot : slots)
-          slot_force<Law>(slot, dt, force);
+          slot_force<Law>(slot, dt);
         return 0;
       });
+      add_terms(force);
+    }
+
+
+    void
+    YarnContact::add_term(const unsigned int node,
+                          const Slot &slot,
+                          const unsigned int term,
+                          const double f[3])
+    {
+      std::vector<double> &to =
+        is_owned[node] ? local_terms : remote_terms[node_owner[node]];
+      to.insert(to.end(),
+                {double(node),
+                 double(slot.node),
+                 double(slot.yarn),
+                 double(term),
+                 f[0],
+                 f[1],
+                 f[2]});
     }
 
 
@@ -522,8 +546,7 @@ namespace YarnImpact
     {
       ReproducibleSum sum(1);
       for (const Slot &slot : slots)
-        if (is_owned[slot.node])
-          sum.add(0, slot.energy);
+        sum.add(0, slot.energy);
       return sum.sum(communicator)[0];
     }
 
@@ -543,7 +566,7 @@ namespace YarnImpact
     {
       unsigned int n = 0;
       for (const Slot &slot : slots)
-        n += slot.touching && is_owned[slot.node];
+        n += slot.touching;
       unsigned int total = 0;
       MPI_Allreduce(&n, &total, 1, MPI_UNSIGNED, MPI_SUM, communicator);
       return total;

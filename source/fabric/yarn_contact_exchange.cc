@@ -167,5 +167,67 @@ namespace YarnImpact
             velocity[3 * receive_nodes[i] + d] = in[6 * i + 3 + d];
           }
     }
+
+
+    void
+    YarnContact::add_terms(std::vector<double> &force)
+    {
+      const unsigned int n_ranks = counts.size();
+      std::vector<int> n_out(n_ranks), at_out(n_ranks + 1, 0), n_in(n_ranks),
+        at_in(n_ranks + 1, 0);
+      std::vector<double> out;
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          n_out[r] = remote_terms[r].size();
+          out.insert(out.end(), remote_terms[r].begin(), remote_terms[r].end());
+          at_out[r + 1] = at_out[r] + n_out[r];
+        }
+      if (n_ranks > 1)
+        MPI_Alltoall(n_out.data(),
+                     1,
+                     MPI_INT,
+                     n_in.data(),
+                     1,
+                     MPI_INT,
+                     communicator);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        at_in[r + 1] = at_in[r] + n_in[r];
+      // This rank's terms, then those of its nodes from the other ranks.
+      std::vector<double> &terms = local_terms;
+      const std::size_t n_local  = terms.size();
+      terms.resize(n_local + at_in[n_ranks]);
+      if (n_ranks > 1)
+        MPI_Alltoallv(out.data(),
+                      n_out.data(),
+                      at_out.data(),
+                      MPI_DOUBLE,
+                      terms.data() + n_local,
+                      n_in.data(),
+                      at_in.data(),
+                      MPI_DOUBLE,
+                      communicator);
+      // Each node's terms in the global order of their slots (node, then
+      // yarn) and of the terms within a slot: the order of a one-rank
+      // evaluation, so that the sums are the same bit for bit on any
+      // partition.
+      const unsigned int n_terms = terms.size() / term_size;
+      std::vector<unsigned int> order(n_terms);
+      for (unsigned int i = 0; i < n_terms; ++i)
+        order[i] = i;
+      std::sort(order.begin(),
+                order.end(),
+                [&](const unsigned int a, const unsigned int b) {
+                  const double *x = &terms[term_size * a],
+                               *y = &terms[term_size * b];
+                  return std::lexicographical_compare(x, x + 4, y, y + 4);
+                });
+      for (const unsigned int i : order)
+        {
+          const double *t      = &terms[term_size * i];
+          const unsigned int k = local_index[static_cast<unsigned int>(t[0])];
+          for (unsigned int d = 0; d < 3; ++d)
+            force[3 * k + d] += t[4 + d];
+        }
+    }
   } // namespace Fabric
 } // namespace YarnImpact

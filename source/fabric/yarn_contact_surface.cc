@@ -144,32 +144,11 @@ namespace YarnImpact
     void
     YarnContact::rebuild()
     {
-      // The histories of the touching contacts, from their nodes' owners
-      // (a node's owner evaluates all its contacts): a rank that now
-      // evaluates a contact it did not before gets its history too.
-      std::vector<double> mine = std::move(loaded), all;
+      // The histories of the touching contacts: a node's owner evaluates
+      // all its contacts, so they are this rank's own (or load()'s).
+      std::vector<double> all = std::move(loaded);
       loaded.clear();
-      append_touching(mine);
-      int n_mine = mine.size();
-      std::vector<int> n_all(counts.size()), offsets(counts.size() + 1, 0);
-      MPI_Allgather(&n_mine,
-                    1,
-                    MPI_INT,
-                    n_all.data(),
-                    1,
-                    MPI_INT,
-                    communicator);
-      for (unsigned int r = 0; r < n_all.size(); ++r)
-        offsets[r + 1] = offsets[r] + n_all[r];
-      all.resize(offsets.back());
-      MPI_Allgatherv(mine.data(),
-                     n_mine,
-                     MPI_DOUBLE,
-                     all.data(),
-                     n_all.data(),
-                     offsets.data(),
-                     MPI_DOUBLE,
-                     communicator);
+      append_touching(all);
       std::map<std::pair<unsigned int, unsigned int>, const double *> old;
       for (unsigned int i = 0; i < all.size();
            i += 8 + 4 * static_cast<unsigned int>(all[i + 7]))
@@ -224,16 +203,16 @@ namespace YarnImpact
             for (long k = bin(box[f][2]); k <= bin(box[f][5]); ++k)
               bins[key(i, j, k)].push_back(f);
 
-      std::vector<std::uint8_t> face_owned(n_faces, 0);
-      for (unsigned int f = 0; f < n_faces; ++f)
-        for (const unsigned int node : surface.faces[f])
-          face_owned[f] |= is_owned[node];
-
       slots.clear();
       slot_faces.clear();
       std::vector<std::pair<unsigned int, unsigned int>> found;
+      // The slots of this rank's nodes only: each contact is evaluated by
+      // its node's owner (add_terms() sends the forces on the faces' nodes
+      // to theirs).
       for (unsigned int s = 0; s < surface.n_nodes(); ++s)
         {
+          if (!is_owned[s])
+            continue;
           const double *p = &position[3 * s];
           const auto it   = bins.find(key(bin(p[0]), bin(p[1]), bin(p[2])));
           if (it == bins.end())
@@ -245,42 +224,35 @@ namespace YarnImpact
                 p[1] <= box[f][4] && p[2] >= box[f][2] && p[2] <= box[f][5])
               found.emplace_back(surface.face_yarn[f], f);
           std::sort(found.begin(), found.end());
-          // One slot per other yarn, kept where this rank owns the node or
-          // a node of one of its faces: then every rank that evaluates it
-          // sees all its faces.
+          // One slot per other yarn.
           for (unsigned int a = 0; a < found.size();)
             {
               unsigned int b = a;
-              bool involved  = is_owned[s];
-              for (; b < found.size() && found[b].first == found[a].first; ++b)
-                involved = involved || face_owned[found[b].second];
-              if (involved)
+              while (b < found.size() && found[b].first == found[a].first)
+                ++b;
+              Slot slot;
+              slot.node  = s;
+              slot.yarn  = found[a].first;
+              slot.begin = slot_faces.size();
+              for (unsigned int c = a; c < b; ++c)
+                slot_faces.push_back(found[c].second);
+              slot.end     = slot_faces.size();
+              const auto o = old.find({slot.node, slot.yarn});
+              if (o != old.end())
                 {
-                  Slot slot;
-                  slot.node  = s;
-                  slot.yarn  = found[a].first;
-                  slot.begin = slot_faces.size();
-                  for (unsigned int c = a; c < b; ++c)
-                    slot_faces.push_back(found[c].second);
-                  slot.end     = slot_faces.size();
-                  const auto o = old.find({slot.node, slot.yarn});
-                  if (o != old.end())
+                  slot.touching = true;
+                  std::copy(o->second, o->second + 3, slot.history);
+                  slot.stiffness = o->second[3];
+                  slot.offset    = o->second[4];
+                  slot.n_tied    = static_cast<unsigned int>(o->second[5]);
+                  for (unsigned int k = 0; k < slot.n_tied; ++k)
                     {
-                      slot.touching = true;
-                      std::copy(o->second, o->second + 3, slot.history);
-                      slot.stiffness = o->second[3];
-                      slot.offset    = o->second[4];
-                      slot.n_tied    = static_cast<unsigned int>(o->second[5]);
-                      for (unsigned int k = 0; k < slot.n_tied; ++k)
-                        {
-                          const double *tied = o->second + 6 + 4 * k;
-                          slot.tied_face[k] =
-                            static_cast<unsigned int>(tied[0]);
-                          std::copy(tied + 1, tied + 4, slot.tied_history[k]);
-                        }
+                      const double *tied = o->second + 6 + 4 * k;
+                      slot.tied_face[k]  = static_cast<unsigned int>(tied[0]);
+                      std::copy(tied + 1, tied + 4, slot.tied_history[k]);
                     }
-                  slots.push_back(slot);
                 }
+              slots.push_back(slot);
               a = b;
             }
         }

@@ -144,10 +144,12 @@ namespace YarnImpact
      * rank owns some nodes and gives their positions and velocities; at
      * a rebuild every rank gathers all of them (6 doubles a surface node,
      * once per skin/2 of motion), between rebuilds only those its
-     * contacts need, from their owners; each rank evaluates, in one global
-     * order, every contact that touches one of its nodes, and keeps its own
-     * nodes' forces, so that any number of ranks gives the same forces bit for
-     * bit.
+     * contacts need, from their owners; each rank evaluates the contacts
+     * of the nodes it owns, once each, and sends the forces on the faces'
+     * nodes it does not own to their owners, which add every node's terms
+     * in one global order (the contact's node, its other yarn, the term's
+     * place in it), so that any number of ranks gives the same forces bit
+     * for bit.
      */
     class YarnContact
     {
@@ -338,11 +340,31 @@ namespace YarnImpact
       dealii::Tensor<1, 3>
       area_vector(const unsigned int node) const;
 
-      /** Evaluate one slot by @p Law over the step @p dt [s], adding
-       * the owned nodes' forces [N] to @p force. */
+      /** Evaluate one slot (its node owned) by @p Law over the step @p dt
+       * [s], its force terms kept by add_term(). */
       template <class Law>
       void
-      slot_force(Slot &slot, const double dt, std::vector<double> &force);
+      slot_force(Slot &slot, const double dt);
+
+      /** Doubles a force term takes: the node it acts on, the slot's node
+       * and yarn, the term's number within the slot, the force [N]. */
+      static constexpr unsigned int term_size = 7;
+
+      /** Keep the force @p f [N] on @p node, the term number @p term of
+       * @p slot: in `local_terms` if this rank owns the node, else in
+       * the node's owner's `remote_terms`. */
+      void
+      add_term(const unsigned int node,
+               const Slot &slot,
+               const unsigned int term,
+               const double f[3]);
+
+      /** Send the terms on other ranks' nodes to their owners and add
+       * every term on an owned node to @p force [N] (3 per owned node), in
+       * the global order of their slots and of the terms within a slot.
+       * Collective. */
+      void
+      add_terms(std::vector<double> &force);
 
       YarnContactParameters parameters;
       ContactSurface surface;
@@ -355,6 +377,12 @@ namespace YarnImpact
       /** Every rank's owned count and nodes, in gather order. */
       std::vector<int> counts, displacements;
       std::vector<unsigned int> gather_order;
+      /** The rank that owns each node. */
+      std::vector<unsigned int> node_owner;
+      /** The force terms of the last add_forces() on owned nodes, and on
+       * each rank's nodes, term_size doubles each. */
+      std::vector<double> local_terms;
+      std::vector<std::vector<double>> remote_terms;
       /** Owned nodes sent to and nodes received from each rank, with
        * the counts and offsets of their MPI_Alltoallv [-]. */
       std::vector<unsigned int> send_nodes, receive_nodes;
