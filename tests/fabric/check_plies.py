@@ -47,6 +47,8 @@ Prints one line per check, "ok" or "FAILED", and exits 1 if one failed.
     (1) the history's broken yarns 0 at every row without a failed or
         eroded cell, never decreasing, and above 0 at the end;
     (2) at most (failed + eroded cells) / 12 (a section has 12 cells);
+    (2') the energy error below 0.5 % of the initial energy at every row,
+        through the failures;
     (3) the last snapshot's count by other code: each cell's yarn, ply,
         failed state, damage and reference centre, its section the
         interval of Cells per spacing per Yarn spacing along its yarn (x
@@ -207,6 +209,10 @@ def broken(directory, n_warp, n_weft, s, cps):
           f"at {failed:.4g} us), never falling, {last[col]:.0f} at the end "
           f"(the first at {first:.4g} us; "
           f"{last[FAILED]:.0f} failed and {last[ERODED]:.0f} eroded cells)")
+    error = header.index("energy error [%]")
+    worst = max(abs(r[error]) for r in rows)
+    check(worst < 0.5, f"energy error at most {worst:.3f} % of the initial "
+          f"energy through the failures (below 0.5 %)")
     check(last[col] * 12 <= last[FAILED] + last[ERODED],
           f"broken yarns: {last[col]:.0f} x 12 cells at most the failed and "
           f"eroded ones, {last[FAILED] + last[ERODED]:.0f}")
