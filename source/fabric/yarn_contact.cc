@@ -488,8 +488,8 @@ namespace YarnImpact
           StepTimer::Scope scope(timer, StepTimer::contact_exchange);
           exchange(x, v);
         }
-      // The slots in one global order (node, then yarn) on every rank:
-      // each node's force sums its terms in the same order on any
+      // Each rank evaluates its own nodes' slots; add_terms() adds every
+      // node's force terms in one global order, the same on any
       // partition.
       StepTimer::Scope scope(timer, StepTimer::contact_forces);
       local_terms.clear();

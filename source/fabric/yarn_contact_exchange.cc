@@ -65,7 +65,7 @@ namespace YarnImpact
     void
     YarnContact::set_up_exchange()
     {
-      // The nodes this rank's slots read: the slave, its faces (for its
+      // The nodes this rank's slots read: the slave's faces (for its
       // area vector) and its candidate faces.
       std::vector<std::uint8_t> needed(surface.n_nodes(), 0);
       for (const Slot &slot : slots)
@@ -78,23 +78,23 @@ namespace YarnImpact
               needed[node] = 1;
         }
       const unsigned int n_ranks = counts.size();
-      std::vector<unsigned int> owner(surface.n_nodes());
-      for (unsigned int r = 0; r < n_ranks; ++r)
-        for (int k = displacements[r]; k < displacements[r + 1]; ++k)
-          owner[gather_order[k]] = r;
 
       // Requests, ascending by owner then node, then what each owner
       // sends back in that order.
+      std::vector<std::vector<unsigned int>> from(n_ranks);
+      for (unsigned int node = 0; node < surface.n_nodes(); ++node)
+        if (needed[node] && !is_owned[node])
+          from[node_owner[node]].push_back(node);
       receive_nodes.clear();
       receive_counts.assign(n_ranks, 0);
       receive_offsets.assign(n_ranks + 1, 0);
       for (unsigned int r = 0; r < n_ranks; ++r)
         {
-          for (unsigned int node = 0; node < surface.n_nodes(); ++node)
-            if (needed[node] && !is_owned[node] && owner[node] == r)
-              receive_nodes.push_back(node);
+          receive_nodes.insert(receive_nodes.end(),
+                               from[r].begin(),
+                               from[r].end());
           receive_offsets[r + 1] = receive_nodes.size();
-          receive_counts[r]      = receive_offsets[r + 1] - receive_offsets[r];
+          receive_counts[r]      = from[r].size();
         }
       send_counts.assign(n_ranks, 0);
       send_offsets.assign(n_ranks + 1, 0);
