@@ -525,6 +525,23 @@ namespace YarnImpact
 
 
     double
+    YarnContact::stable_time_step() const
+    {
+      // A node's Gershgorin row sum is 2 k_s (slave) plus 2 k_s (face
+      // node of the other side's slave on it), k_s = p A / 2.
+      const double ratio = std::max(1., parameters.tangential_stiffness_ratio);
+      const double zeta  = parameters.damping_ratio;
+      double dt          = std::numeric_limits<double>::max();
+      for (unsigned int i = 0; i < surface.n_nodes(); ++i)
+        dt = std::min(dt,
+                      2. * std::sqrt(surface.mass[i] /
+                                     (2. * ratio * parameters.penalty *
+                                      surface.area[i])));
+      return dt * (std::sqrt(1. + zeta * zeta) - zeta);
+    }
+
+
+    double
     YarnContact::energy() const
     {
       ReproducibleSum sum(1);

@@ -159,7 +159,7 @@ namespace YarnImpact
         << surface.faces.size() << " faces, penalty " << parameters.penalty
         << " Pa/m, friction " << parameters.friction
         << ": stable step of a node on its springs "
-        << contact->reference_time_step() * 1e9 << " ns\n";
+        << contact->stable_time_step() * 1e9 << " ns\n";
       return s.str();
     }
   } // namespace Fabric

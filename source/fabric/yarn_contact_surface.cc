@@ -297,9 +297,6 @@ namespace YarnImpact
         work.push_back(node_dissipated[node]);
       out.put(touching);
       out.put(work);
-      // The step's bound from the grown areas (stable_time_step()) needs
-      // the lists, which a restart makes only at its first step.
-      out.put(std::vector<double>{local_rate()});
     }
 
 
@@ -310,9 +307,6 @@ namespace YarnImpact
       std::vector<double> touching, work(owned.size());
       in.get(touching);
       in.get_same_size(work, "dissipated work of the yarn contact's nodes");
-      std::vector<double> rate(1);
-      in.get_same_size(rate, "the yarn contact's stiffest grown node");
-      restored_rate = rate[0];
       for (unsigned int k = 0; k < owned.size(); ++k)
         node_dissipated[owned[k]] = work[k];
       loaded = touching;

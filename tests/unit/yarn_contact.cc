@@ -23,11 +23,6 @@
 //     1.5 d_max carries p 1.5 d_max per area (a touching contact holds to
 //     2 d_max), and lets go beyond 2 d_max; blocks brought from apart to
 //     1.5 d_max in one step do not touch (no contact starts beyond d_max).
-// (e) the stable step: for blocks of one cell (every node with the same
-//     mass m = rho a w h / 8 and area A = (a w + a h + w h) / 4), at rest
-//     2 sqrt(m / (2 p A)); with the lower block stretched four times along
-//     x, so that its top face, the upper block's candidate, has four times
-//     its area, half that (its nodes carry four times the springs).
 // In (a) and (b) the blocks are pressed by d in the first step, as in (d).
 
 #include <yarn_impact/fabric/yarn_contact.h>
@@ -355,36 +350,6 @@ main(int argc, char **argv)
       step(contact, x, 0., 0., nullptr);
       step(contact, x, -1.6 * d_max, 0., "from apart to 1.5 d_max in a step");
     }
-  }
-
-  // (e) The stable step from the grown surface.
-  {
-    const auto s = two_blocks(d, {1, 1, 1}, {1, 1, 1});
-    Fabric::YarnContact contact(prm, s, all_nodes(s), MPI_COMM_SELF);
-    const double m = density * a * w * h / 8., A = (a * w + a * h + w * h) / 4.;
-    const double dt_ref   = 2. * std::sqrt(m / (2. * prm.penalty * A));
-    std::vector<double> x = positions(s), v(x.size(), 0.), f(x.size(), 0.);
-    contact.add_forces(x, v, 1e-9, f);
-    const double at_rest = contact.stable_time_step();
-    for (unsigned int i = 0; i < s.n_nodes(); ++i)
-      if (s.node_yarn[i] == 0)
-        x[3 * i] *= 4.;
-    f.assign(x.size(), 0.);
-    contact.add_forces(x, v, 1e-9, f);
-    const double stretched = contact.stable_time_step();
-    std::printf("(e) stable step, blocks of one cell: 2 sqrt(m / (2 p A)) = "
-                "%.6e s; reference %.6e s, at rest %.6e s (within 1e-12: "
-                "%s); lower block stretched 4 times along x: %.6e s, over "
-                "the reference %.12f (1/2 within 1e-12: %s)\n",
-                dt_ref,
-                contact.reference_time_step(),
-                at_rest,
-                yes_no[std::abs(contact.reference_time_step() - dt_ref) <
-                         1e-12 * dt_ref &&
-                       std::abs(at_rest - dt_ref) < 1e-12 * dt_ref],
-                stretched,
-                stretched / dt_ref,
-                yes_no[std::abs(stretched / dt_ref - 0.5) < 1e-12]);
   }
   return 0;
 }

@@ -180,26 +180,13 @@ namespace YarnImpact
                  std::vector<double> &force);
 
       /**
-       * The largest stable step [s] of a node on its contact springs at
-       * the reference areas: the smallest over the nodes of 2 sqrt(m / k),
-       * m the node's lumped mass, k = 2 max(1, k_t/k_n) p A its Gershgorin
-       * row sum when it is both a slave (stiffness p A / 2) and the face
-       * node of the other side's slave on it (conforming surfaces), A its
-       * reference area, reduced for the damping as the projectile
-       * contact's. The same on every rank; not collective.
-       */
-      double
-      reference_time_step() const;
-
-      /**
-       * The largest stable step [s] of a node on its contact springs now:
-       * reference_time_step(), smaller where a possible contact's slave
-       * has a larger current area (or a stiffer touching spring) than its
-       * reference one, or one of its candidate faces has grown (its nodes'
-       * k scaled by the face's current over its reference area), at the
-       * positions of the last add_forces(). The same on every rank;
-       * collective. The model's step adds its squared frequency:
-       * 1/dt^2 = 1/dt_e^2 + 1/dt_c^2.
+       * The largest stable step [s] of a node on its contact springs,
+       * the smallest over the nodes of 2 sqrt(m / k), m the node's lumped
+       * mass, k = 2 max(1, k_t/k_n) p A its Gershgorin row sum when it is
+       * both a slave (stiffness p A / 2) and the face node of the other
+       * side's slave on it (conforming surfaces), reduced for the damping
+       * as the projectile contact's; the same on every rank. The model's
+       * step adds its squared frequency: 1/dt^2 = 1/dt_e^2 + 1/dt_c^2.
        */
       double
       stable_time_step() const;
@@ -274,12 +261,6 @@ namespace YarnImpact
         unsigned int tied_face[4] = {0, 0, 0, 0};
         double tied_history[4][3] = {};
       };
-
-      /** The largest k / m [1/s^2] (k as in stable_time_step()) over this
-       * rank's possible contacts whose areas have grown, 0 if none: the
-       * saved value after load() until the lists are made again. */
-      double
-      local_rate() const;
 
       /** Whether surface node @p node lies on the symmetry plane normal
        * to @p axis (0: x = 0, 2: z = 0) that bounds the modelled part. */
@@ -422,8 +403,6 @@ namespace YarnImpact
       /** Touching contacts read by load(), as append_touching() writes
        * them, for the next rebuild. */
       std::vector<double> loaded;
-      /** local_rate() as save() found it, read by load() [1/s^2]. */
-      double restored_rate  = 0.;
       unsigned int rebuilds = 0;
       bool built            = false;
       /** The fabric's step timer, or null. */
