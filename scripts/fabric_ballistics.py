@@ -15,6 +15,11 @@ perforated if its primary yarns broke before; otherwise it is an error.
 
 V50: the lowest impact velocity that perforates, by bisection between the
 highest velocity that does not and the lowest that does, to the tolerance.
+The bisection assumes that perforation is monotonic in the impact velocity;
+a run that perforates below the highest velocity that does not is reported
+(one line, and the row `perforated below the bracket [m/s]` of
+fabric_v50.csv, empty when none): the V50 is then not one number (doc/fabric.md
+section 15).
 """
 import math
 import os
@@ -126,6 +131,16 @@ def bisect_v50(run, results, tolerance):
     return hi, lo, hi
 
 
+def perforated_below(results, highest_not):
+    """The velocities [m/s] that perforate below HIGHEST_NOT, the highest
+    velocity that does not (ascending; empty when perforation is monotonic
+    in the velocity)."""
+    if highest_not is None:
+        return []
+    return sorted(r["velocity"] for r in results
+                  if r["perforated"] and r["velocity"] < highest_not)
+
+
 def lambert_jonas(results, v50):
     """Fit v_r = a (v^p - V50^p)^(1/p) to the perforating runs above V50,
     V50 the bisection's: (a, p, largest residual [m/s]), or None without
@@ -209,6 +224,16 @@ def write(out, results, v50, bracket, fit, estimate):
         rows = [("V50 of the model [m/s]", v50),
                 ("highest velocity not perforating [m/s]", bracket[0]),
                 ("lowest velocity perforating [m/s]", bracket[1])]
+        below = perforated_below(results, bracket[0])
+        rows.append(("perforated below the bracket [m/s]",
+                     below[0] if below else None))
+        if below:
+            print("  fabric: perforation is not monotonic in the impact "
+                  "velocity: perforated at %s m/s, below %g m/s, which does "
+                  "not perforate; the V50 above is the bisection's between "
+                  "%g and %g m/s" % (", ".join("%g" % v for v in below),
+                                     bracket[0], bracket[0], bracket[1]),
+                  flush=True)
         if fit:
             rows += [("Lambert-Jonas a", fit[0]), ("Lambert-Jonas p", fit[1]),
                      ("Lambert-Jonas largest residual [m/s]", fit[2])]
