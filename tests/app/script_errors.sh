@@ -4,7 +4,9 @@
 # arguments and files give one line "SCRIPT: error: ..." and a non-zero
 # exit, never a traceback (identify_charmetant.py: missing, folder, binary,
 # malformed, non-numeric, non-finite, empty CSVs, bad --expect; and
-# ballistic_sweep.py: bad --velocities, --models, --build, --out, --np).
+# ballistic_sweep.py: bad --velocities, --models, --build, --out, --np;
+# plot_fabric.py: missing, foreign and empty histories). The fabric
+# sweep's V50 table reports a perforation below its bracket.
 # The sweep, on a fake build (a script standing in for yarn-impact that
 # writes a history and a summary), keys its runs on the exact velocity (120
 # and 120.4 m/s are two runs), reuses them when nothing changed, and runs
@@ -114,5 +116,48 @@ refused "sweep: --build without yarn-impact" 1 "holds no executable yarn-impact"
 touch a_file
 refused "sweep: --out is a file" 1 "exists and is not a folder" $py "$sweep" --build fake --out a_file
 refused "sweep: --out under a file" 1 "cannot be created" $py "$sweep" --build fake --out a_file/sub
+
+# plot_fabric.py: a fabric history's plots; refused files.
+plot_fabric="$src/scripts/plot_fabric.py"
+refused "plot_fabric: missing history" 1 "cannot read missing.csv" $py "$plot_fabric" missing.csv pf
+refused "plot_fabric: not a fabric history" 1 "is not a fabric history: no column" $py "$plot_fabric" sw/ballistics.csv pf
+refused "plot_fabric: empty history" 1 "empty.csv has no rows" $py "$plot_fabric" empty.csv pf
+
+# The fabric sweep's V50 (fabric_ballistics.py) reports a perforation that
+# is not monotonic in the impact velocity: a run perforating below the
+# highest velocity that does not is printed and written to fabric_v50.csv;
+# none when it is monotonic.
+$py - "$src/scripts" > fabric_v50.txt 2>&1 <<'PY' || fail "fabric V50 report: $(tail -3 fabric_v50.txt)"
+import csv, os, sys
+sys.path.insert(0, sys.argv[1])
+import fabric_ballistics as fb
+def runs(perforated):
+    return [{"velocity": v, "residual": 0.5 * v if p else 0.6 * v,
+             "broken": 4 if p else 0, "primary": 4, "perforated": p,
+             "absorbed": 1.0, "broken_at": 4.0 if p else None, "end": 5.0,
+             "wall": None} for v, p in perforated]
+for name, perforated, bracket, expect in (
+        ("monotonic", [(200, False), (250, False), (300, True)],
+         (250, 300), ""),
+        ("not monotonic", [(200, False), (250, True), (290, False),
+                           (300, True)], (290, 300), "250")):
+    os.makedirs(name, exist_ok=True)
+    fb.write(name, runs(perforated), bracket[1], bracket, None, None)
+    rows = {r["quantity"]: r["value"] for r in
+            csv.DictReader(open(os.path.join(name, "fabric_v50.csv")))}
+    got = rows.get("perforated below the bracket [m/s]")
+    print("%s: perforated below the bracket %r (expected %r): %s"
+          % (name, got, expect, "yes" if got == expect else "no"))
+PY
+cat fabric_v50.txt
+if grep -q ": no$" fabric_v50.txt || [ "$(grep -c ': yes$' fabric_v50.txt)" -ne 2 ]; then
+  fail "fabric V50 report: $(cat fabric_v50.txt)"
+elif ! grep -q "perforation is not monotonic in the impact velocity: perforated at 250 m/s, below 290 m/s" fabric_v50.txt; then
+  fail "fabric V50 report: no line for the non-monotonic sweep"
+elif [ "$(grep -c 'not monotonic in the impact' fabric_v50.txt)" -ne 1 ]; then
+  fail "fabric V50 report: a line for the monotonic sweep too"
+else
+  echo "ok     fabric V50: a perforation below the bracket reported, none when monotonic"
+fi
 
 test_end "all script cases passed"
