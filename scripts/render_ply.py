@@ -19,12 +19,12 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from paraview.simple import (ColorBy, GetActiveViewOrCreate,  # noqa: E402
-                             GetColorTransferFunction, GetScalarBar,
-                             OpenDataFile, SaveScreenshot, Show,
-                             Transform, UpdatePipeline, Clip)
+from paraview.simple import (Clip, ColorBy,  # noqa: E402
+                             GetActiveViewOrCreate, GetColorTransferFunction,
+                             OpenDataFile, SaveScreenshot, Show, Transform,
+                             UpdatePipeline)
 
-from render_yarn import (BLACK, TITLES, option, set_font,  # noqa: E402
+from render_yarn import (TITLES, option, scalar_bar,  # noqa: E402
                          text, white_background)
 
 TITLES = dict(TITLES, damage="fibre damage [-]", yarn="yarn number",
@@ -77,24 +77,10 @@ def main(argv):
     lut = GetColorTransferFunction(field)
     lut.ApplyPreset("Turbo", True)
     lut.AutomaticRescaleRangeMode = "Never"
-    bar = GetScalarBar(lut, view)
-    bar.Title = title
-    bar.ComponentTitle = ""
-    bar.TitleColor = BLACK
-    bar.LabelColor = BLACK
-    bar.TitleFontSize = 22
-    bar.LabelFontSize = 19
-    set_font(bar, "Title")
-    set_font(bar, "Label")
-    bar.TitleBold = 0
-    bar.LabelBold = 0
-    bar.Orientation = "Horizontal"
+    bar = scalar_bar(lut, view, title)
     bar.WindowLocation = "Lower Center"
     bar.ScalarBarLength = 0.4
-    bar.LabelFormat = "%.3g"
-    bar.AutomaticLabelFormat = 0
     bar.RangeLabelFormat = "%.3g"
-    bar.Visibility = 1
 
     time_label = text(view, "", "Upper Left Corner", 30)
     note = ("deflection (y) exaggerated x%g, failed cells not shown"

@@ -107,6 +107,29 @@ def text(view, string, location, size):
     return display
 
 
+def scalar_bar(lut, view, title):
+    """The colour bar of LUT in VIEW for print: TITLE, dark text in
+    FONT_FILE, horizontal, labels %.3g; the caller places it."""
+    bar = GetScalarBar(lut, view)
+    bar.Title = title
+    bar.ComponentTitle = ""
+    bar.TitleColor = BLACK
+    bar.LabelColor = BLACK
+    bar.TitleFontSize = 22
+    bar.LabelFontSize = 19
+    set_font(bar, "Title")
+    set_font(bar, "Label")
+    bar.TitleBold = 0
+    bar.LabelBold = 0
+    bar.TitleShadow = 0
+    bar.LabelShadow = 0
+    bar.Orientation = "Horizontal"
+    bar.LabelFormat = "%.3g"
+    bar.AutomaticLabelFormat = 0
+    bar.Visibility = 1
+    return bar
+
+
 def white_background(view):
     for prop, value in (("UseColorPaletteForBackground", 0),
                         ("BackgroundColorMode", "Single Color"),
@@ -205,29 +228,13 @@ def main(argv):
         lut.ApplyPreset("Cool to Warm", True)
     lut.AutomaticRescaleRangeMode = "Never"
 
-    bar = GetScalarBar(lut, view)
-    bar.Title = title
-    bar.ComponentTitle = ""
-    bar.TitleColor = BLACK
-    bar.LabelColor = BLACK
-    bar.TitleFontSize = 22
-    bar.LabelFontSize = 19
-    set_font(bar, "Title")
-    set_font(bar, "Label")
-    bar.TitleBold = 0
-    bar.LabelBold = 0
-    bar.TitleShadow = 0
-    bar.LabelShadow = 0
-    bar.Orientation = "Horizontal"
+    bar = scalar_bar(lut, view, title)
     bar.WindowLocation = "Any Location"
     bar.ScalarBarThickness = 18
     bar.ScalarBarLength = 0.42
     bar.DrawTickMarks = 1
     bar.AddRangeLabels = 0
     bar.UseCustomLabels = 1
-    bar.LabelFormat = "%.3g"
-    bar.AutomaticLabelFormat = 0
-    bar.Visibility = 1
 
     # Axes in mm with their true values.
     grid = view.AxesGrid
