@@ -71,6 +71,9 @@ namespace YarnImpact
       for (unsigned int f = 0; f < surface.faces.size(); ++f)
         for (const unsigned int node : surface.faces[f])
           node_faces[node].push_back(f);
+      face_removed.assign(surface.faces.size(), 0);
+      for (unsigned int i = 0; i < surface.n_nodes(); ++i)
+        node_live_faces.push_back(node_faces[i].size());
       remote_terms.resize(n_ranks);
       node_owner.resize(surface.n_nodes());
       for (int r = 0; r < n_ranks; ++r)
@@ -90,6 +93,9 @@ namespace YarnImpact
       dealii::Tensor<1, 3> A;
       for (const unsigned int f : node_faces[node])
         {
+          // A failed cell's face is no longer the node's surface.
+          if (face_removed[f])
+            continue;
           const auto &c    = surface.faces[f];
           const unsigned k = std::find(c.begin(), c.end(), node) - c.begin();
           const double *corners[4];
@@ -136,6 +142,12 @@ namespace YarnImpact
     {
       const unsigned int s = slot.node;
       const double *p      = &position[3 * s];
+      // A node whose faces have all failed has no surface to press with.
+      if (node_live_faces[s] == 0)
+        {
+          end_contact(slot);
+          return;
+        }
       // The slot's force terms, numbered in the order they are made.
       unsigned int n_terms = 0;
       // The node's area vector, evaluated when a face's projection first
@@ -201,6 +213,8 @@ namespace YarnImpact
       for (unsigned int i = slot.begin; i < slot.end; ++i)
         {
           const unsigned int f = slot_faces[i];
+          if (face_removed[f])
+            continue;
           const double *c[4];
           for (unsigned int a = 0; a < 4; ++a)
             c[a] = &position[3 * surface.faces[f][a]];
@@ -247,13 +261,12 @@ namespace YarnImpact
             continue;
           keep(trial, depth, f, face_extent, false);
         }
-      slot.energy = 0.;
       if (n_touched == 0)
         {
-          slot.touching = false;
-          slot.n_tied   = 0;
+          end_contact(slot);
           return;
         }
+      slot.energy = 0.;
       // The closest face, the first in face order on an exact tie.
       unsigned int closest = 0;
       for (unsigned int j = 1; j < n_touched; ++j)
@@ -488,6 +501,7 @@ namespace YarnImpact
           StepTimer::Scope scope(timer, StepTimer::contact_exchange);
           exchange(x, v);
         }
+      find_eroding();
       // Each rank evaluates its own nodes' slots; add_terms() adds every
       // node's force terms in one global order, the same on any
       // partition.
@@ -501,6 +515,7 @@ namespace YarnImpact
           slot_force<Law>(slot, dt);
         return 0;
       });
+      eroding.clear();
       add_terms(force);
     }
 

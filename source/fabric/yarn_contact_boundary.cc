@@ -104,6 +104,9 @@ namespace YarnImpact
       unsigned int n_faces         = 0;
       for (const unsigned int g : node_faces[feature[0]])
         {
+          // A failed cell's face holds no feature.
+          if (face_removed[g])
+            continue;
           const auto &cg     = surface.faces[g];
           double at[2]       = {0., 0.};
           unsigned int found = 0;

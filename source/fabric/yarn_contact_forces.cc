@@ -51,6 +51,13 @@ namespace YarnImpact
     }
 
     void
+    YarnContactForces::remove_cells(const std::vector<double> &cells,
+                                    const bool restored)
+    {
+      contact->remove_cells(cells, restored);
+    }
+
+    void
     YarnContactForces::add_forces(const std::vector<double> &x,
                                   const std::vector<double> &v,
                                   const double dt,
@@ -79,8 +86,10 @@ namespace YarnImpact
       const double energy = this->energy(), work = dissipated();
       std::ostringstream s;
       s << "yarn contact: " << touching << " touching contacts at the end, "
-        << contact->n_rebuilds() << " candidate lists built; energy "
-        << energy * 1e3 << " mJ, dissipated " << work * 1e3
+        << contact->n_rebuilds() << " candidate lists built, "
+        << contact->n_removed_faces()
+        << " faces of failed cells left out; energy " << energy * 1e3
+        << " mJ, dissipated " << work * 1e3
         << " mJ; net force over the sum of |forces|, all steps, " << balance;
       return s.str();
     }

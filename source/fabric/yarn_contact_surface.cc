@@ -151,7 +151,7 @@ namespace YarnImpact
       append_touching(all);
       std::map<std::pair<unsigned int, unsigned int>, const double *> old;
       for (unsigned int i = 0; i < all.size();
-           i += 8 + 4 * static_cast<unsigned int>(all[i + 7]))
+           i += 9 + 4 * static_cast<unsigned int>(all[i + 8]))
         old[{static_cast<unsigned int>(all[i]),
              static_cast<unsigned int>(all[i + 1])}] = &all[i + 2];
 
@@ -244,10 +244,11 @@ namespace YarnImpact
                   std::copy(o->second, o->second + 3, slot.history);
                   slot.stiffness = o->second[3];
                   slot.offset    = o->second[4];
-                  slot.n_tied    = static_cast<unsigned int>(o->second[5]);
+                  slot.energy    = o->second[5];
+                  slot.n_tied    = static_cast<unsigned int>(o->second[6]);
                   for (unsigned int k = 0; k < slot.n_tied; ++k)
                     {
-                      const double *tied = o->second + 6 + 4 * k;
+                      const double *tied = o->second + 7 + 4 * k;
                       slot.tied_face[k]  = static_cast<unsigned int>(tied[0]);
                       std::copy(tied + 1, tied + 4, slot.tied_history[k]);
                     }
@@ -276,6 +277,7 @@ namespace YarnImpact
                         slot.history[2],
                         slot.stiffness,
                         slot.offset,
+                        slot.energy,
                         double(slot.n_tied)});
             for (unsigned int k = 0; k < slot.n_tied; ++k)
               out.insert(out.end(),

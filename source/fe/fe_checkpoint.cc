@@ -94,6 +94,10 @@ namespace YarnImpact
         in.tag("fe extra forces");
       for (const auto &forces : parameters.extra_forces)
         forces->load(in);
+      // The extra forces learn the cells failed before the checkpoint
+      // again, as they did when each failed.
+      failure_reported.assign(cells.failed.size(), 0);
+      report_failed_cells(true);
     }
 
 

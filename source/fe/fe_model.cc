@@ -165,8 +165,30 @@ namespace YarnImpact
 
     template <class Law>
     void
+    YarnModel<Law>::report_failed_cells(const bool restored)
+    {
+      if (parameters.extra_forces.empty())
+        return;
+      failure_reported.resize(cells.failed.size(), 0);
+      std::vector<double> failed;
+      for (const unsigned int c : owned_cells)
+        if (cells.failed[c] != CellState::active && !failure_reported[c])
+          {
+            failure_reported[c] = 1;
+            for (unsigned int k = 0; k < n_cell_dofs; ++k)
+              failed.push_back(
+                reference_coordinate[cells.dofs[c * n_cell_dofs + k]]);
+          }
+      for (const auto &forces : parameters.extra_forces)
+        forces->remove_cells(failed, restored);
+    }
+
+
+    template <class Law>
+    void
     YarnModel<Law>::add_extra_forces(const double dt)
     {
+      report_failed_cells(false);
       for (unsigned int s = 0; s < extra.size(); ++s)
         {
           ExtraNodes &e = extra[s];

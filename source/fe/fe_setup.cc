@@ -536,6 +536,7 @@ namespace YarnImpact
         for (unsigned int d = 0; d < 3; ++d)
           reference[3 * k + d] = reference_coordinate[nodes[k][d]];
       extra.clear();
+      failure_reported.assign(cells.failed.size(), 0);
       for (const auto &forces : parameters.extra_forces)
         {
           ExtraNodes e;

@@ -320,9 +320,17 @@ namespace YarnImpact
       setup_extra_forces();
 
       /** For compute_forces(): the extra forces at the current state,
-       * over the step @p dt [s], added to the owned dofs. */
+       * over the step @p dt [s], added to the owned dofs, after they have
+       * been told the owned cells that failed since the last call
+       * (ExtraForces::remove_cells). */
       void
       add_extra_forces(const double dt);
+
+      /** Tell the extra forces the owned cells that have failed and are
+       * not yet reported (all of them with @p restored, after a restart),
+       * and mark them reported. Collective. */
+      void
+      report_failed_cells(const bool restored);
 
       /** Set-up step 5: the mass [kg] and top [m] of the yarn, the contact's
        * stable step [s], the state at rest and its section widths. */
@@ -405,6 +413,9 @@ namespace YarnImpact
       };
       /** Those of each of FE::Parameters::extra_forces, in its order. */
       std::vector<ExtraNodes> extra;
+      /** Per owned or ghost cell: whether its failure has been reported to
+       * the extra forces (report_failed_cells()). */
+      std::vector<unsigned char> failure_reported;
       /** On a given mesh: each cell's mean fibre direction [-], for the
        * snapshots. */
       std::vector<std::array<double, 3>> cell_fibre;

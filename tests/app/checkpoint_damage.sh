@@ -192,7 +192,7 @@ rm -rf fe1 && cp -a saved_fe1 fe1
 printf '# yarn-impact checkpoint of the fe model: restart with yarn-impact --restart\ngeneration = 2\nslot = 1\nranks = 1\ntime = 8.5e-07\nstep = 41\ncompleted = 0\n' > fe1/checkpoint_fe.txt
 run 1 --restart fe1.prm
 if [ "$rc" -ne 1 ] || [ "$(wc -l < stderr)" -ne 1 ] ||
-   ! grep -qF "yarn-impact: error: the checkpoint file 'fe1/checkpoint_fe.txt' cannot be used (it is of checkpoint format 1, written by an earlier version of yarn-impact without checksums; this version reads format 3 only)" stderr; then
+   ! grep -qF "yarn-impact: error: the checkpoint file 'fe1/checkpoint_fe.txt' cannot be used (it is of checkpoint format 1, written by an earlier version of yarn-impact without checksums; this version reads format 4 only)" stderr; then
   fail "format 1: exit $rc: $(head -c 300 stderr)"
 fi
 

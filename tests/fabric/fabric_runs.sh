@@ -64,6 +64,12 @@
 #               the end, the count of the last snapshot's cells
 #               (check_plies.py broken); the two histories byte for byte
 #               the same.
+#  fragments    the V50 ply (prm/fabric/km2_ply_v50.prm) with sudden
+#               failure at 550 m/s, 5 us, 2 ranks: perforated, the
+#               fragments of its broken yarns striking each other, the
+#               energy error below 0.5 % at every row with the faces of
+#               failed cells left out of the yarn contact
+#               (check_history.py fragments).
 #  ranks        4 x 4 yarns, 3.5 us, failure on: the Charmetant law with
 #               sudden and with progressive failure, the linear law with
 #               sudden failure (progressive needs Charmetant): the
@@ -74,7 +80,9 @@
 #               --restart, on 1 and 2 ranks: the history byte for byte the
 #               uninterrupted run's; the same for the 3 x 3 patch struck by
 #               the sphere, no failure, stopped at 1.25 us with tied yarn
-#               contacts (1 rank).
+#               contacts (1 rank); the 4 x 4 patch with sudden failure at
+#               2 % stopped at 2 us, after its first failed cells, whose
+#               faces the yarn contact leaves out (1 rank).
 #  grip         4 x 4 yarns, no failure, 2.5 us, the clamps' finite grip
 #               (Fabric/Clamp grip): the rigid clamps against grips of
 #               1e6 N that never slip, of stiffness 3e8 and 3e9 N/m
@@ -303,6 +311,17 @@ case $case in
     /usr/bin/python3 "$here/check_history.py" energy shifted || failures=$((failures + 1))
     /usr/bin/python3 "$here/check_plies.py" plies shifted 0.4e-3 0.1e-3 0.0575e-3 shifted || failures=$((failures + 1))
     ;;
+  fragments)
+    # The V50 ply with sudden failure, perforated at 550 m/s (5 us, 2 ranks).
+    { printf 'include %s/prm/fabric/km2_ply_v50.prm\n' "$src"
+      printf 'subsection Yarn\n  set Failure model = sudden\nend\n'
+      printf 'subsection Projectile\n  set Initial velocity = 550\nend\n'
+      printf 'subsection Output\n  set Directory = fragments\n'
+      printf '  set Verbosity = quiet\nend\n'; } > fragments.prm
+    run 2 fragments.prm
+    [ "$rc" -eq 0 ] || fail "fragments: exit $rc: $(head -c 300 stderr)"
+    /usr/bin/python3 "$here/check_history.py" fragments fragments || failures=$((failures + 1))
+    ;;
   broken)
     weak='subsection Yarn\n  set Failure model = sudden\n  set Failure strain = 0.02\nend\n'
     for n in 1 2; do
@@ -360,6 +379,16 @@ case $case in
     patch tie_ref 3 3 1.6e-6 0.05e-6 "$extra" > tie_ref.prm
     patch tie_cut 3 3 1.6e-6 0.05e-6 "$extra" > tie_cut.prm
     restarted tie_ref tie_cut 25 "with tied contacts"
+    # Cells failed before the stop (sudden failure at 2 %, from 1.5 us):
+    # the restart tells the yarn contact again which faces it leaves out,
+    # handing no spring's energy for them.
+    weak='subsection Yarn\n  set Failure model = sudden\n  set Failure strain = 0.02\nend\n'
+    patch failed_ref 4 4 3e-6 0.1e-6 "$weak" > failed_ref.prm
+    patch failed_cut 4 4 3e-6 0.1e-6 "$weak" > failed_cut.prm
+    restarted failed_ref failed_cut 20 "with failed cells out of the yarn contact"
+    awk -F, 'NR > 1 && NR <= 21 && $15 > 0 {found = 1} END {exit !found}' \
+      failed_ref/history_fabric.csv ||
+      fail "restart: no failed cell before the stop (the case no longer tests the faces left out)"
     ;;
   grip)
     grip() {

@@ -31,7 +31,7 @@ namespace YarnImpact
    *   keeps the previous one.
    *
    * Every checkpoint proves that it is whole before anything is restored
-   * (format 3): a rank file is a header (magic, format, rank, ranks,
+   * (format 4): a rank file is a header (magic, format, rank, ranks,
    * generation, length), the state and a CRC-32 of both; the info file
    * records, for the newest checkpoint and the older one in the other
    * slot, a CRC-32 over the rank files' checksums, and the CRC-32 of
@@ -185,10 +185,12 @@ namespace YarnImpact
 
 
     /** The version of the checkpoint files this build writes and reads:
-     * 3, with checksums, and history rows with the yarn's momentum and a
-     * model's own columns (1, without checksums, and 2, with the shorter
-     * rows, are refused with a message naming their format). */
-    constexpr unsigned int format = 3;
+     * 4, with checksums, history rows with the yarn's momentum and a
+     * model's own columns, and the energy of each touching contact of a
+     * fabric's yarn contact (1, without checksums, 2, with the shorter
+     * rows, and 3, without the yarn contact's energies, are refused with a
+     * message naming their format). */
+    constexpr unsigned int format = 4;
 
     /** One checkpoint as `checkpoint_<model>.txt` records it. */
     struct Record

@@ -201,6 +201,30 @@ namespace YarnImpact
       double
       dissipated() const;
 
+      /**
+       * Leave out of the contact the faces of @p cells, cells that carry
+       * no stress any more (broken or eroded), each given by the
+       * reference positions [m] of its 8 vertices (24 values a cell; this
+       * rank's, every rank gives its own): the eroding contact. A face
+       * of such a cell presses nothing and is pressed by nothing, a node
+       * whose faces all belong to such cells is no slave, and a node's
+       * area vector counts its remaining faces only. A touching contact
+       * that ends in the next add_forces() because its node or the faces
+       * it could press were removed here hands the energy its spring held
+       * to dissipated(), as a failed cell hands its strain energy to the
+       * FE model's; with @p restored (the cells failed before a restart)
+       * nothing is handed. Collective.
+       */
+      void
+      remove_cells(const std::vector<double> &cells, const bool restored);
+
+      /** Faces left out by remove_cells() so far [-]. */
+      unsigned int
+      n_removed_faces() const
+      {
+        return n_removed;
+      }
+
       /** Candidate lists built so far [-]. */
       unsigned int
       n_rebuilds() const
@@ -224,9 +248,9 @@ namespace YarnImpact
       /** Write the contact's state to a checkpoint: the touching
        * contacts whose node this rank owns (node, other yarn, tangential
        * history [m], normal stiffness [N/m], the spring's rest depth [m],
-       * tied faces and their histories [m]) and each owned node's
-       * dissipated work [J]. The candidate lists are not written: they are
-       * built again after load(), and longer or shorter lists give the
+       * the energy it held [J], tied faces and their histories [m]) and each
+       * owned node's dissipated work [J]. The candidate lists are not written:
+       * they are built again after load(), and longer or shorter lists give the
        * same forces. */
       void
       save(Checkpoint::Writer &out) const;
@@ -298,9 +322,10 @@ namespace YarnImpact
       static constexpr unsigned int max_touched = 8;
 
       /** Append the touching contacts of the owned slave nodes to @p out,
-       * 8 + 4 t doubles each (node, yarn, tangential history, stiffness,
-       * the spring's rest depth, t tied faces, each face and its
-       * history): the record a checkpoint
+       * 9 + 4 t doubles each (node, yarn, tangential history, stiffness,
+       * the spring's rest depth, the energy it held at its last
+       * evaluation, t tied faces, each face and its history): the record
+       * a checkpoint
        * and a rebuild's history hand-over share. */
       void
       append_touching(std::vector<double> &out) const;
@@ -339,6 +364,12 @@ namespace YarnImpact
        * the current configuration. */
       dealii::Tensor<1, 3>
       area_vector(const unsigned int node) const;
+
+      /** End @p slot's contact: no longer touching, no energy; the energy
+       * its spring held goes to its node's dissipated work if
+       * remove_cells() listed it among the eroding contacts. */
+      void
+      end_contact(Slot &slot);
 
       /** Evaluate one slot (its node owned) by @p Law over the step @p dt
        * [s], its force terms kept by add_term(). */
@@ -398,6 +429,27 @@ namespace YarnImpact
       std::vector<std::vector<unsigned int>> node_faces;
       std::vector<Slot> slots;
       std::vector<unsigned int> slot_faces;
+      /** Whether each face has been left out (remove_cells()). */
+      std::vector<std::uint8_t> face_removed;
+      /** Faces of each node not left out [-]. */
+      std::vector<unsigned int> node_live_faces;
+      unsigned int n_removed = 0;
+      /** Each surface node by its reference position (remove_cells()). */
+      std::vector<std::pair<std::array<double, 3>, unsigned int>> node_at;
+      /** The faces removed by remove_cells() since the last add_forces()
+       * (not those of a restart) [-]. */
+      std::vector<unsigned int> removed_now;
+      /** The touching contacts (node, other yarn) of owned nodes whose
+       * node's faces or candidate faces were removed since the last
+       * add_forces(), and the energy their springs held [J], ascending:
+       * handed to dissipated() if the contact ends in this add_forces(). */
+      std::vector<std::pair<std::pair<unsigned int, unsigned int>, double>>
+        eroding;
+
+      /** Fill `eroding` from the slots and `removed_now`, after the
+       * lists are built. */
+      void
+      find_eroding();
       /** Damping and slip work of each owned node as a slave [J]. */
       std::vector<double> node_dissipated;
       /** Touching contacts read by load(), as append_touching() writes

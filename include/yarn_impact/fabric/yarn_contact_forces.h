@@ -48,6 +48,12 @@ namespace YarnImpact
       setup(const std::vector<double> &reference,
             const MPI_Comm communicator) override;
 
+      /** The contact leaves out the faces of @p cells
+       * (YarnContact::remove_cells()). */
+      void
+      remove_cells(const std::vector<double> &cells,
+                   const bool restored) override;
+
       void
       add_forces(const std::vector<double> &x,
                  const std::vector<double> &v,

@@ -45,6 +45,24 @@ namespace YarnImpact
                  const double dt,
                  std::vector<double> &force) = 0;
 
+      /**
+       * The cells that have stopped carrying stress (broken or eroded,
+       * FE::CellState) among this rank's owned cells, each given by the
+       * reference positions [m] of its 8 vertices in deal.II's order
+       * (24 values a cell, in @p cells): in every step, before
+       * add_forces(), those that failed in it (@p restored false), and
+       * once after a restart, before the first step, every failed cell
+       * (@p restored true). Collective. Forces that act on a surface use
+       * it to leave out the faces of such cells (the eroding contact of
+       * explicit codes); the default ignores them.
+       */
+      virtual void
+      remove_cells(const std::vector<double> &cells, const bool restored)
+      {
+        (void)cells;
+        (void)restored;
+      }
+
       /** Largest stable step [s] of its springs alone; the FE model adds
        * its squared frequency to its own: 1/dt^2 = 1/dt_e^2 + 1/dt_c^2. */
       virtual double
