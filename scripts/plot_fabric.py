@@ -100,9 +100,10 @@ def main(argv):
         ax.plot(t, values, color=colour, ls=style, label=label)
     ax.set_xlabel("t [us]")
     ax.set_ylabel("energy [mJ]")
-    ax.set_title((title + ": " if title else "") + "largest energy error "
+    # Two lines: the case and the error do not fit one at this width.
+    ax.set_title((title + "\n" if title else "") + "largest energy error "
                  "%.3f %% of the initial energy"
-                 % max(abs(e) for e in h["error"]))
+                 % max(abs(e) for e in h["error"]), fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
