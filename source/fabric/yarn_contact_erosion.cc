@@ -32,43 +32,20 @@ namespace YarnImpact
                      offsets.data(),
                      MPI_DOUBLE,
                      communicator);
-      if (node_at.empty())
-        {
-          for (unsigned int i = 0; i < surface.n_nodes(); ++i)
-            node_at.push_back({{{surface.reference[i][0],
-                                 surface.reference[i][1],
-                                 surface.reference[i][2]}},
-                               i});
-          std::sort(node_at.begin(), node_at.end());
-        }
-
       // A face is a failed cell's when its four nodes are among the
-      // cell's vertices (the two meshes' vertices are equal bit for bit,
-      // match_surface_nodes()); a boundary face has one cell.
-      for (std::size_t c = 0; c + 24 <= all.size(); c += 24)
+      // cell's vertices, found on the surface by position as the FE nodes
+      // are (match_surface_nodes(): vertex k is cell k / 8's); a boundary
+      // face has one cell.
+      std::vector<std::vector<unsigned int>> on_surface(all.size() / 24);
+      for (const auto &[node, k] : match_surface_nodes(surface.reference, all))
+        on_surface[k / 8].push_back(node);
+      for (const auto &cell : on_surface)
         {
-          unsigned int on_surface[8], m = 0;
-          for (unsigned int a = 0; a < 8; ++a)
-            {
-              const std::array<double, 3> X = {
-                {all[c + 3 * a], all[c + 3 * a + 1], all[c + 3 * a + 2]}};
-              const auto it =
-                std::lower_bound(node_at.begin(),
-                                 node_at.end(),
-                                 X,
-                                 [](const auto &entry,
-                                    const std::array<double, 3> &key) {
-                                   return entry.first < key;
-                                 });
-              if (it != node_at.end() && it->first == X)
-                on_surface[m++] = it->second;
-            }
           const auto in_cell = [&](const unsigned int node) {
-            return std::find(on_surface, on_surface + m, node) !=
-                   on_surface + m;
+            return std::find(cell.begin(), cell.end(), node) != cell.end();
           };
-          for (unsigned int k = 0; k < m; ++k)
-            for (const unsigned int f : node_faces[on_surface[k]])
+          for (const unsigned int node : cell)
+            for (const unsigned int f : node_faces[node])
               if (!face_removed[f] && std::all_of(surface.faces[f].begin(),
                                                   surface.faces[f].end(),
                                                   in_cell))

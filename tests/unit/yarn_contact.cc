@@ -28,7 +28,6 @@
 #include <yarn_impact/fabric/yarn_contact.h>
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <algorithm>
@@ -36,8 +35,9 @@
 #include <cstdio>
 #include <numeric>
 
+#include "two_blocks.h"
+
 using namespace YarnImpact;
-using dealii::Point;
 
 namespace
 {
@@ -45,28 +45,16 @@ namespace
   const double density = 1440.;                  // [kg/m^3]
 
   /** Block 0 (below, top at y = top0) and block 1 (above, bottom at
-   * y = 0), of the given subdivisions and extents in x and z. */
+   * y = 0), of the given subdivisions and extents in x and z: their
+   * surface. */
   Fabric::ContactSurface
-  two_blocks(const double top0,
-             const std::vector<unsigned int> &n0,
-             const std::vector<unsigned int> &n1,
-             const double margin1 = 0.)
+  blocks_surface(const double top0,
+                 const std::vector<unsigned int> &n0,
+                 const std::vector<unsigned int> &n1,
+                 const double margin1 = 0.)
   {
-    dealii::Triangulation<3> lower, upper, both;
-    dealii::GridGenerator::subdivided_hyper_rectangle(lower,
-                                                      n0,
-                                                      Point<3>(0.,
-                                                               top0 - h,
-                                                               0.),
-                                                      Point<3>(a, top0, w));
-    dealii::GridGenerator::subdivided_hyper_rectangle(
-      upper,
-      n1,
-      Point<3>(-margin1, 0., -margin1),
-      Point<3>(a + margin1, h, w + margin1));
-    for (const auto &cell : upper.active_cell_iterators())
-      cell->set_material_id(1);
-    dealii::GridGenerator::merge_triangulations(lower, upper, both);
+    dealii::Triangulation<3> both;
+    two_blocks(both, a, h, w, top0, n0, n1, margin1);
     return Fabric::make_contact_surface(both, density);
   }
 
@@ -144,7 +132,7 @@ main(int argc, char **argv)
   std::printf("(a) pressed by d = 1 um, p = 5e13 Pa/m: p d a w = %.6f N\n", N);
   for (const unsigned int n1x : {4u, 5u})
     {
-      const auto s = two_blocks(d, {4, 1, 3}, {n1x, 1, n1x == 4 ? 3u : 2u});
+      const auto s = blocks_surface(d, {4, 1, 3}, {n1x, 1, n1x == 4 ? 3u : 2u});
       Fabric::YarnContact contact(prm, s, all_nodes(s), MPI_COMM_SELF);
       std::vector<double> x = positions(s), v = moving_upper(s, -d, 1e-9),
                           f(x.size(), 0.);
@@ -165,7 +153,7 @@ main(int argc, char **argv)
 
   // (b) Friction: stick below mu N, slide at mu N.
   {
-    const auto s   = two_blocks(d, {4, 1, 3}, {5, 1, 2});
+    const auto s   = blocks_surface(d, {4, 1, 3}, {5, 1, 2});
     const double V = 1., dt = 1e-9;
     std::printf("(b) friction mu = 0.2, k_t = k_n: mu N = %.6f N\n",
                 prm.friction * N);
@@ -205,7 +193,7 @@ main(int argc, char **argv)
     Fabric::YarnContactParameters elastic = prm;
     elastic.friction                      = 0.;
     const double gap                      = 0.5e-6;
-    const auto s          = two_blocks(-gap, {4, 1, 2}, {5, 1, 3}, 0.1e-3);
+    const auto s          = blocks_surface(-gap, {4, 1, 2}, {5, 1, 3}, 0.1e-3);
     const double v0[2][3] = {{0.3, 1., 0.2}, {0., -0.5, 0.}};
     std::printf("(c) collision, gap 0.5 um, closing at 1.5 m/s\n");
     std::vector<double> end_errors;
@@ -293,7 +281,7 @@ main(int argc, char **argv)
                 "= %.6f N/um\n",
                 d_max * 1e6,
                 N / (d * 1e6));
-    const auto s = two_blocks(d, {4, 1, 3}, {4, 1, 3});
+    const auto s = blocks_surface(d, {4, 1, 3}, {4, 1, 3});
     // Each step: move by @p dy, evaluate, compare the force on the lower
     // block with p @p expect A and the energy with p expect^2 A / 2.
     const auto step = [&](Fabric::YarnContact &contact,

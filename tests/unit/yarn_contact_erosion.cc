@@ -27,7 +27,6 @@
 #include <yarn_impact/fabric/yarn_contact.h>
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <cmath>
@@ -35,8 +34,9 @@
 #include <numeric>
 #include <vector>
 
+#include "two_blocks.h"
+
 using namespace YarnImpact;
-using dealii::Point;
 
 namespace
 {
@@ -114,18 +114,8 @@ main(int argc, char **argv)
 
   // Yarn 1 on top of yarn 0, pressed by d (its bottom at y = 0, yarn 0's
   // top at y = d).
-  dealii::Triangulation<3> lower, upper, both;
-  dealii::GridGenerator::subdivided_hyper_rectangle(lower,
-                                                    {4, 1, 3},
-                                                    Point<3>(0., d - h, 0.),
-                                                    Point<3>(a, d, w));
-  dealii::GridGenerator::subdivided_hyper_rectangle(upper,
-                                                    {4, 1, 3},
-                                                    Point<3>(0., 0., 0.),
-                                                    Point<3>(a, h, w));
-  for (const auto &cell : upper.active_cell_iterators())
-    cell->set_material_id(1);
-  dealii::GridGenerator::merge_triangulations(lower, upper, both);
+  dealii::Triangulation<3> both;
+  two_blocks(both, a, h, w, d, {4, 1, 3}, {4, 1, 3});
   const Fabric::ContactSurface s = Fabric::make_contact_surface(both, 1440.);
   std::vector<unsigned int> owned(s.n_nodes());
   std::iota(owned.begin(), owned.end(), 0);

@@ -22,7 +22,6 @@
 #include <yarn_impact/fabric/yarn_contact.h>
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <array>
@@ -33,8 +32,9 @@
 #include <set>
 #include <utility>
 
+#include "two_blocks.h"
+
 using namespace YarnImpact;
-using dealii::Point;
 
 namespace
 {
@@ -160,18 +160,8 @@ main(int argc, char **argv)
     prm.penalty    = 5e13;
     prm.friction   = 0.2;
     const double N = prm.penalty * d * a * w;
-    dealii::Triangulation<3> lower, upper, both;
-    dealii::GridGenerator::subdivided_hyper_rectangle(lower,
-                                                      {4, 1, 3},
-                                                      Point<3>(0., d - h, 0.),
-                                                      Point<3>(a, d, w));
-    dealii::GridGenerator::subdivided_hyper_rectangle(upper,
-                                                      {4, 1, 3},
-                                                      Point<3>(0., 0., 0.),
-                                                      Point<3>(a, h, w));
-    for (const auto &cell : upper.active_cell_iterators())
-      cell->set_material_id(1);
-    dealii::GridGenerator::merge_triangulations(lower, upper, both);
+    dealii::Triangulation<3> both;
+    two_blocks(both, a, h, w, d, {4, 1, 3}, {4, 1, 3});
     // Yarn 1 stands along y: its section y = 0 is a free end, y = h a
     // clamped end; every other boundary face is lateral.
     unsigned int clamped_faces = 0, boundary_faces = 0;

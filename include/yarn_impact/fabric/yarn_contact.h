@@ -434,8 +434,6 @@ namespace YarnImpact
       /** Faces of each node not left out [-]. */
       std::vector<unsigned int> node_live_faces;
       unsigned int n_removed = 0;
-      /** Each surface node by its reference position (remove_cells()). */
-      std::vector<std::pair<std::array<double, 3>, unsigned int>> node_at;
       /** The faces removed by remove_cells() since the last add_forces()
        * (not those of a restart) [-]. */
       std::vector<unsigned int> removed_now;
