@@ -31,33 +31,58 @@ namespace YarnImpact
        * and P the law's P', whose forces with the turned gradients are
        * those of P' R^T; the straight yarn compiles without it.
        */
-      template <class Law, bool oriented>
+      template <class Law, bool oriented, class Damage>
       inline CellResult
       integrate_scalar(const Law &law,
                        const double *u,
                        const double *grad,
                        const double *frame,
                        const double *JxW,
-                       const double fibre_damage,
+                       const bool progressive,
+                       const Damage &damage_of,
                        double *f)
       {
         CellResult r;
         for (unsigned int k = 0; k < n_cell_dofs; ++k)
           f[k] = 0.;
+        Mechanics::Matrix3 Fq[n_q];
         for (unsigned int q = 0; q < n_q; ++q)
           {
             double g[n_nodes * 3];
             gather_gradients(grad, q, g);
-            Mechanics::Matrix3 F, P;
             if constexpr (oriented)
               {
                 Mechanics::FibreFrame R;
                 for (unsigned int k = 0; k < 9; ++k)
                   R[k] = frame[frame_index(q, k)];
-                deformation_gradient(u, g, R, F);
+                deformation_gradient(u, g, R, Fq[q]);
               }
             else
-              deformation_gradient(u, g, F);
+              deformation_gradient(u, g, Fq[q]);
+          }
+        double fibre_damage = 0.;
+        if constexpr (Law::separable_fibre_term)
+          if (progressive)
+            {
+              // The fibre stretches of this configuration, before the
+              // stresses: the damage of this step (explicit, no lag).
+              double max_Ie = -1., sum_Ie2_JxW = 0.;
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  const Mechanics::Matrix3 &F = Fq[q];
+                  const double Ie =
+                    0.5 * std::log(F[0] * F[0] + F[3] * F[3] + F[6] * F[6]);
+                  max_Ie = std::max(max_Ie, Ie);
+                  sum_Ie2_JxW += Ie * Ie * JxW[q];
+                }
+              fibre_damage = damage_of(max_Ie, sum_Ie2_JxW);
+            }
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            double g[n_nodes * 3];
+            gather_gradients(grad, q, g);
+            const Mechanics::Matrix3 &F = Fq[q];
+            Mechanics::Matrix3 P;
             Mechanics::Invariants inv;
             double W = law.stress(F, P, inv);
             if constexpr (Law::separable_fibre_term)
@@ -97,31 +122,39 @@ namespace YarnImpact
        * The same for a vectorised law (Law::vectorised), four Gauss points
        * at a time in SIMD lanes: the hot loop of the benchmark.
        */
-      template <class Law, bool oriented>
+      template <class Law, bool oriented, class Damage>
       inline CellResult
       integrate_lanes(const Law &law,
                       const double *u,
                       const double *grad,
                       const double *frame,
                       const double *JxW,
-                      const double fibre_damage,
+                      const bool progressive,
+                      const Damage &damage_of,
                       double *f)
       {
         using internal::Double4;
         using internal::n_lanes;
+        constexpr unsigned int n_blocks = n_q / n_lanes;
         CellResult r;
         Double4 fv[n_cell_dofs];
         for (auto &v : fv)
           v = Double4{0., 0., 0., 0.};
-        for (unsigned int block = 0; block < n_q / n_lanes; ++block)
+        // The shape gradients of a block, [vertex][direction][lane].
+        const auto load_gradients = [grad](const unsigned int block,
+                                           Double4(&g)[n_nodes][3]) {
+          const double *gb = grad + block * gradient_block_size;
+          for (unsigned int a = 0; a < n_nodes; ++a)
+            for (unsigned int d = 0; d < 3; ++d)
+              for (unsigned int l = 0; l < n_lanes; ++l)
+                g[a][d][l] = gb[lane_gradient_index(a, d, l)];
+        };
+        Double4 Fb[n_blocks][9];
+        for (unsigned int block = 0; block < n_blocks; ++block)
           {
-            const double *gb = grad + block * gradient_block_size;
             Double4 g[n_nodes][3];
-            for (unsigned int a = 0; a < n_nodes; ++a)
-              for (unsigned int d = 0; d < 3; ++d)
-                for (unsigned int l = 0; l < n_lanes; ++l)
-                  g[a][d][l] = gb[lane_gradient_index(a, d, l)];
-            Double4 F[9];
+            load_gradients(block, g);
+            Double4(&F)[9] = Fb[block];
             if constexpr (oriented)
               std::memcpy(F,
                           frame + block * 9 * n_lanes,
@@ -133,7 +166,34 @@ namespace YarnImpact
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)
                   F[3 * i + j] += u[3 * a + i] * g[a][j];
-            const Double4 J = Mechanics::determinant(F);
+          }
+        double fibre_damage = 0.;
+        if constexpr (Law::separable_fibre_term)
+          if (progressive)
+            {
+              // As in integrate_scalar(): the damage from this
+              // configuration's fibre stretches, before the stresses.
+              double max_Ie = -1., sum_Ie2_JxW = 0.;
+              for (unsigned int block = 0; block < n_blocks; ++block)
+                {
+                  const Double4(&F)[9] = Fb[block];
+                  const Double4 Ie =
+                    0.5 *
+                    internal::lane_log(F[0] * F[0] + F[3] * F[3] + F[6] * F[6]);
+                  for (unsigned int l = 0; l < n_lanes; ++l)
+                    {
+                      max_Ie = std::max(max_Ie, Ie[l]);
+                      sum_Ie2_JxW += Ie[l] * Ie[l] * JxW[block * n_lanes + l];
+                    }
+                }
+              fibre_damage = damage_of(max_Ie, sum_Ie2_JxW);
+            }
+        for (unsigned int block = 0; block < n_blocks; ++block)
+          {
+            Double4 g[n_nodes][3];
+            load_gradients(block, g);
+            const Double4(&F)[9] = Fb[block];
+            const Double4 J      = Mechanics::determinant(F);
             Double4 P[9], Ie, Itc, Itd;
             Double4 W = law.stress_kernel(F, P, Ie, Itc, Itd);
             if constexpr (Law::separable_fibre_term)
@@ -173,32 +233,35 @@ namespace YarnImpact
 #pragma GCC diagnostic pop
 
       /** One cell with the path the law supports. */
-      template <class Law, bool oriented>
+      template <class Law, bool oriented, class Damage>
       inline CellResult
       integrate_cell(const Law &law,
                      const double *u,
                      const double *grad,
                      const double *frame,
                      const double *JxW,
-                     const double fibre_damage,
+                     const bool progressive,
+                     const Damage &damage_of,
                      double *f)
       {
         if constexpr (Law::vectorised)
-          return integrate_lanes<Law, oriented>(law,
-                                                u,
-                                                grad,
-                                                frame,
-                                                JxW,
-                                                fibre_damage,
-                                                f);
+          return integrate_lanes<Law, oriented, Damage>(law,
+                                                        u,
+                                                        grad,
+                                                        frame,
+                                                        JxW,
+                                                        progressive,
+                                                        damage_of,
+                                                        f);
         else
-          return integrate_scalar<Law, oriented>(law,
-                                                 u,
-                                                 grad,
-                                                 frame,
-                                                 JxW,
-                                                 fibre_damage,
-                                                 f);
+          return integrate_scalar<Law, oriented, Damage>(law,
+                                                         u,
+                                                         grad,
+                                                         frame,
+                                                         JxW,
+                                                         progressive,
+                                                         damage_of,
+                                                         f);
       }
 
       // Compiled twice, for CPUs with AVX2 and FMA and for any x86-64, and
@@ -207,59 +270,59 @@ namespace YarnImpact
       // machine that reports a generic Xeon it silently ran the generic
       // clone.)
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-      template <class Law, bool oriented>
+      template <class Law, bool oriented, class Damage>
       __attribute__((target("avx2,fma"), flatten)) CellResult
       integrate_avx2(const Law &law,
                      const double *u,
                      const double *grad,
                      const double *frame,
                      const double *JxW,
-                     const double fibre_damage,
+                     const bool progressive,
+                     const Damage &damage_of,
                      double *f)
       {
-        return integrate_cell<Law, oriented>(law,
-                                             u,
-                                             grad,
-                                             frame,
-                                             JxW,
-                                             fibre_damage,
-                                             f);
+        return integrate_cell<Law, oriented, Damage>(law,
+                                                     u,
+                                                     grad,
+                                                     frame,
+                                                     JxW,
+                                                     progressive,
+                                                     damage_of,
+                                                     f);
       }
 
-      // YARN_IMPACT_PORTABLE_KERNEL=1 forces the portable variant, to
-      // compare the two on one machine (doc/fe-model.md).
-      const bool cpu_has_avx2_fma =
-        __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-        std::getenv("YARN_IMPACT_PORTABLE_KERNEL") == nullptr;
 #endif
 
-      template <class Law, bool oriented>
+      template <class Law, bool oriented, class Damage>
       __attribute__((flatten)) CellResult
       integrate(const Law &law,
                 const double *u,
                 const double *grad,
                 const double *frame,
                 const double *JxW,
-                const double fibre_damage,
+                const bool progressive,
+                const Damage &damage_of,
                 double *f)
       {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-        if (cpu_has_avx2_fma)
-          return integrate_avx2<Law, oriented>(law,
-                                               u,
-                                               grad,
-                                               frame,
-                                               JxW,
-                                               fibre_damage,
-                                               f);
+        if (internal::avx2_fma_kernel)
+          return integrate_avx2<Law, oriented, Damage>(law,
+                                                       u,
+                                                       grad,
+                                                       frame,
+                                                       JxW,
+                                                       progressive,
+                                                       damage_of,
+                                                       f);
 #endif
-        return integrate_cell<Law, oriented>(law,
-                                             u,
-                                             grad,
-                                             frame,
-                                             JxW,
-                                             fibre_damage,
-                                             f);
+        return integrate_cell<Law, oriented, Damage>(law,
+                                                     u,
+                                                     grad,
+                                                     frame,
+                                                     JxW,
+                                                     progressive,
+                                                     damage_of,
+                                                     f);
       }
     } // namespace
 
@@ -268,7 +331,7 @@ namespace YarnImpact
     cell_kernel_variant()
     {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-      if (cpu_has_avx2_fma)
+      if (internal::avx2_fma_kernel)
         return "avx2+fma";
 #endif
       return "portable";
@@ -332,68 +395,51 @@ namespace YarnImpact
           double u[n_cell_dofs], f[n_cell_dofs];
           for (unsigned int k = 0; k < n_cell_dofs; ++k)
             u[k] = displacement.local_element(dofs[k]);
-          double fibre_damage = 0.;
-          if constexpr (Law::separable_fibre_term)
-            if (progress)
+          // The damage of this step from the fibre stretches of this
+          // configuration, which the kernel hands over before the stresses
+          // (explicit, no lag): the largest ln(lambda_f) of the Gauss
+          // points and the sum of ln(lambda_f)^2 JxW.
+          const auto damage_of = [&](const double max_Ie,
+                                     const double sum_Ie2_JxW) {
+            if (max_Ie > cells.kappa[c])
               {
-                // The damage of this step, from the fibre stretches of this
-                // configuration, before the forces (explicit, no lag):
-                // F M = M + sum_a u_a dN_a/dX . M at each Gauss point
-                // (M = e_x on the straight yarn; with frames, column 0 of
-                // the frame and the gradients' first component in it).
-                double max_Ie = -1., fibre_energy = 0.;
-                for (unsigned int q = 0; q < n_q; ++q)
-                  {
-                    double Fx[3] = {1., 0., 0.};
-                    if (oriented)
-                      for (unsigned int i = 0; i < 3; ++i)
-                        Fx[i] = frame[frame_index(q, 3 * i)];
-                    for (unsigned int a = 0; a < n_nodes; ++a)
-                      {
-                        const double g0 = grad[gradient_index(q, a, 0)];
-                        Fx[0] += u[3 * a] * g0;
-                        Fx[1] += u[3 * a + 1] * g0;
-                        Fx[2] += u[3 * a + 2] * g0;
-                      }
-                    const double Ie =
-                      0.5 *
-                      std::log(Fx[0] * Fx[0] + Fx[1] * Fx[1] + Fx[2] * Fx[2]);
-                    max_Ie = std::max(max_Ie, Ie);
-                    fibre_energy +=
-                      0.5 * failure.fibre_modulus * Ie * Ie * JxW[q];
-                  }
-                if (max_Ie > cells.kappa[c])
-                  {
-                    const double I_0 =
-                      failure.onset_log_stretch_at(cells.depth[c]);
-                    const double d =
-                      failure.damage(max_Ie, cells.fibre_length[c], I_0);
-                    // What the law dissipates: the exact integral along
-                    // its envelope (d only grows: irreversible).
-                    const double released =
-                      dissipation_increment(failure,
-                                            cells.kappa[c],
-                                            max_Ie,
-                                            fibre_energy,
-                                            cells.fibre_length[c],
-                                            I_0);
-                    dissipated += released;
-                    cells.dissipated[c] += released;
-                    cells.kappa[c]  = max_Ie;
-                    cells.damage[c] = std::max(cells.damage[c], d);
-                  }
-                fibre_damage = cells.damage[c];
+                const double fibre_energy =
+                  0.5 * failure.fibre_modulus * sum_Ie2_JxW;
+                const double I_0 = failure.onset_log_stretch_at(cells.depth[c]);
+                const double d =
+                  failure.damage(max_Ie, cells.fibre_length[c], I_0);
+                // What the law dissipates: the exact integral along its
+                // envelope (d only grows: irreversible).
+                const double released =
+                  dissipation_increment(failure,
+                                        cells.kappa[c],
+                                        max_Ie,
+                                        fibre_energy,
+                                        cells.fibre_length[c],
+                                        I_0);
+                dissipated += released;
+                cells.dissipated[c] += released;
+                cells.kappa[c]  = max_Ie;
+                cells.damage[c] = std::max(cells.damage[c], d);
               }
-          const CellResult r =
-            oriented
-              ? integrate<Law, true>(law, u, grad, frame, JxW, fibre_damage, f)
-              : integrate<Law, false>(law,
-                                      u,
-                                      grad,
-                                      frame,
-                                      JxW,
-                                      fibre_damage,
-                                      f);
+            return cells.damage[c];
+          };
+          const CellResult r        = oriented ? integrate<Law, true>(law,
+                                                               u,
+                                                               grad,
+                                                               frame,
+                                                               JxW,
+                                                               progress,
+                                                               damage_of,
+                                                               f)
+                                               : integrate<Law, false>(law,
+                                                                u,
+                                                                grad,
+                                                                frame,
+                                                                JxW,
+                                                                progress,
+                                                                damage_of,
+                                                                f);
           const double cell_energy  = r.energy;
           cells.energy[c]           = cell_energy;
           cells.log_stretch[c]      = r.max_elongation;
