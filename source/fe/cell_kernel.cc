@@ -22,11 +22,29 @@ namespace YarnImpact
         double min_J          = 1e300; // smallest det F
       };
 
+      /** What the force loop hands the integration of one cell. */
+      struct CellInput
+      {
+        /** Nodal displacements [m], 3a + d. */
+        const double *u;
+        /** Shape gradients [1/m] (gradient_index()). */
+        const double *grad;
+        /** Fibre frames (frame_index()), or null on the straight path. */
+        const double *frame;
+        /** Gauss weights times Jacobians [m^3]. */
+        const double *JxW;
+        /** Whether the progressive failure law damages the fibre term. */
+        bool progressive;
+      };
+
       /**
        * Internal forces f (24 values [N], not yet negated) of one cell from
-       * its nodal displacements u, shape gradients and JxW, one Gauss point
-       * at a time (any law). With @p oriented the gradients are in the
-       * Gauss points' fibre frames @p frame (CellData::frames) and F starts
+       * its nodal displacements, shape gradients and JxW (@p in), one Gauss
+       * point at a time (any law); with in.progressive the fibre damage
+       * from @p damage_of (the largest ln(lambda_f) and the sum of
+       * ln(lambda_f)^2 JxW of this configuration). With @p oriented the
+       * gradients are in the Gauss points' fibre frames in.frame
+       * (CellData::frames) and F starts
        * from the frame instead of I: F is then F R, the law's argument,
        * and P the law's P', whose forces with the turned gradients are
        * those of P' R^T; the straight yarn compiles without it.
@@ -34,14 +52,12 @@ namespace YarnImpact
       template <class Law, bool oriented, class Damage>
       inline CellResult
       integrate_scalar(const Law &law,
-                       const double *u,
-                       const double *grad,
-                       const double *frame,
-                       const double *JxW,
-                       const bool progressive,
+                       const CellInput &in,
                        const Damage &damage_of,
                        double *f)
       {
+        const double *u = in.u, *grad = in.grad, *frame = in.frame,
+                     *JxW = in.JxW;
         CellResult r;
         for (unsigned int k = 0; k < n_cell_dofs; ++k)
           f[k] = 0.;
@@ -62,7 +78,7 @@ namespace YarnImpact
           }
         double fibre_damage = 0.;
         if constexpr (Law::separable_fibre_term)
-          if (progressive)
+          if (in.progressive)
             {
               // The fibre stretches of this configuration, before the
               // stresses: the damage of this step (explicit, no lag).
@@ -125,14 +141,12 @@ namespace YarnImpact
       template <class Law, bool oriented, class Damage>
       inline CellResult
       integrate_lanes(const Law &law,
-                      const double *u,
-                      const double *grad,
-                      const double *frame,
-                      const double *JxW,
-                      const bool progressive,
+                      const CellInput &in,
                       const Damage &damage_of,
                       double *f)
       {
+        const double *u = in.u, *grad = in.grad, *frame = in.frame,
+                     *JxW = in.JxW;
         using internal::Double4;
         using internal::n_lanes;
         constexpr unsigned int n_blocks = n_q / n_lanes;
@@ -169,7 +183,7 @@ namespace YarnImpact
           }
         double fibre_damage = 0.;
         if constexpr (Law::separable_fibre_term)
-          if (progressive)
+          if (in.progressive)
             {
               // As in integrate_scalar(): the damage from this
               // configuration's fibre stretches, before the stresses.
@@ -236,32 +250,14 @@ namespace YarnImpact
       template <class Law, bool oriented, class Damage>
       inline CellResult
       integrate_cell(const Law &law,
-                     const double *u,
-                     const double *grad,
-                     const double *frame,
-                     const double *JxW,
-                     const bool progressive,
+                     const CellInput &in,
                      const Damage &damage_of,
                      double *f)
       {
         if constexpr (Law::vectorised)
-          return integrate_lanes<Law, oriented, Damage>(law,
-                                                        u,
-                                                        grad,
-                                                        frame,
-                                                        JxW,
-                                                        progressive,
-                                                        damage_of,
-                                                        f);
+          return integrate_lanes<Law, oriented>(law, in, damage_of, f);
         else
-          return integrate_scalar<Law, oriented, Damage>(law,
-                                                         u,
-                                                         grad,
-                                                         frame,
-                                                         JxW,
-                                                         progressive,
-                                                         damage_of,
-                                                         f);
+          return integrate_scalar<Law, oriented>(law, in, damage_of, f);
       }
 
       // Compiled twice, for CPUs with AVX2 and FMA and for any x86-64, and
@@ -273,56 +269,26 @@ namespace YarnImpact
       template <class Law, bool oriented, class Damage>
       __attribute__((target("avx2,fma"), flatten)) CellResult
       integrate_avx2(const Law &law,
-                     const double *u,
-                     const double *grad,
-                     const double *frame,
-                     const double *JxW,
-                     const bool progressive,
+                     const CellInput &in,
                      const Damage &damage_of,
                      double *f)
       {
-        return integrate_cell<Law, oriented, Damage>(law,
-                                                     u,
-                                                     grad,
-                                                     frame,
-                                                     JxW,
-                                                     progressive,
-                                                     damage_of,
-                                                     f);
+        return integrate_cell<Law, oriented>(law, in, damage_of, f);
       }
-
 #endif
 
       template <class Law, bool oriented, class Damage>
       __attribute__((flatten)) CellResult
       integrate(const Law &law,
-                const double *u,
-                const double *grad,
-                const double *frame,
-                const double *JxW,
-                const bool progressive,
+                const CellInput &in,
                 const Damage &damage_of,
                 double *f)
       {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
         if (internal::avx2_fma_kernel)
-          return integrate_avx2<Law, oriented, Damage>(law,
-                                                       u,
-                                                       grad,
-                                                       frame,
-                                                       JxW,
-                                                       progressive,
-                                                       damage_of,
-                                                       f);
+          return integrate_avx2<Law, oriented>(law, in, damage_of, f);
 #endif
-        return integrate_cell<Law, oriented, Damage>(law,
-                                                     u,
-                                                     grad,
-                                                     frame,
-                                                     JxW,
-                                                     progressive,
-                                                     damage_of,
-                                                     f);
+        return integrate_cell<Law, oriented>(law, in, damage_of, f);
       }
     } // namespace
 
@@ -424,22 +390,10 @@ namespace YarnImpact
               }
             return cells.damage[c];
           };
-          const CellResult r        = oriented ? integrate<Law, true>(law,
-                                                               u,
-                                                               grad,
-                                                               frame,
-                                                               JxW,
-                                                               progress,
-                                                               damage_of,
-                                                               f)
-                                               : integrate<Law, false>(law,
-                                                                u,
-                                                                grad,
-                                                                frame,
-                                                                JxW,
-                                                                progress,
-                                                                damage_of,
-                                                                f);
+          const CellInput in        = {u, grad, frame, JxW, progress};
+          const CellResult r        = oriented
+                                        ? integrate<Law, true>(law, in, damage_of, f)
+                                        : integrate<Law, false>(law, in, damage_of, f);
           const double cell_energy  = r.energy;
           cells.energy[c]           = cell_energy;
           cells.log_stretch[c]      = r.max_elongation;

@@ -59,13 +59,13 @@ namespace YarnImpact
       {
         return x >= 0. ? 1. : -1.;
       }
-      /** asinh(s)/s: its Taylor series in s^2 up to s^16 is exact to
-       * round-off for s < 0.1 (the usual range) and needs no division. */
-      inline double
-      lane_asinh_ratio(const double s, const double s2)
+      /** The Taylor series of asinh(s)/s in s^2 up to s^16, for double
+       * and Double4 alike: exact to round-off for s < 0.1 (the usual
+       * range), and no division. */
+      template <typename V>
+      inline V
+      asinh_ratio_series(const V s2)
       {
-        if (s >= 0.1)
-          return std::asinh(s) / s;
         return 1. +
                s2 *
                  (-1. / 6. +
@@ -77,6 +77,15 @@ namespace YarnImpact
                                        s2 * (231. / 13312. +
                                              s2 * (-143. / 10240. +
                                                    s2 * 6435. / 557056.)))))));
+      }
+
+      /** asinh(s)/s: its series below s = 0.1 (asinh_ratio_series()). */
+      inline double
+      lane_asinh_ratio(const double s, const double s2)
+      {
+        if (s >= 0.1)
+          return std::asinh(s) / s;
+        return asinh_ratio_series(s2);
       }
 
 #define YARN_IMPACT_LANEWISE(name, expression) \
@@ -264,16 +273,7 @@ namespace YarnImpact
       inline Double4
       lane_asinh_ratio(const Double4 s, const Double4 s2)
       {
-        Double4 r =
-          1. +
-          s2 * (-1. / 6. +
-                s2 * (3. / 40. +
-                      s2 * (-5. / 112. +
-                            s2 * (35. / 1152. +
-                                  s2 * (-63. / 2816. +
-                                        s2 * (231. / 13312. +
-                                              s2 * (-143. / 10240. +
-                                                    s2 * 6435. / 557056.)))))));
+        Double4 r = asinh_ratio_series(s2);
         if (!all_lanes(s < 0.1))
           for (unsigned int l = 0; l < 4; ++l)
             if (s[l] >= 0.1)
